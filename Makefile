@@ -1,0 +1,30 @@
+# Thin wrapper around CMake presets. The README's two commands:
+#   make demo   installs what is missing, builds Release, runs the demo case
+#   make test   installs what is missing, builds Release, runs the tests (CTest)
+JOBS ?= $(shell nproc)
+
+.PHONY: deps build demo test test-sanitize bench clean
+
+deps:
+	scripts/install-deps
+
+build: deps
+	cmake --preset release
+	cmake --build --preset release -j $(JOBS)
+
+demo: build
+	./build/release/particula run cases/couette.toml --out runs/demo --overwrite
+
+test: build
+	ctest --preset release -j $(JOBS)
+
+test-sanitize: deps
+	cmake --preset sanitize
+	cmake --build --preset sanitize -j $(JOBS)
+	ctest --preset sanitize -j $(JOBS)
+
+bench: build
+	./build/release/bench/particula_bench
+
+clean:
+	rm -rf build

@@ -1,0 +1,97 @@
+// The typed, validated description of a run (SI units). Built from a TOML case file by
+// load_case(); physics code reads only this struct, never the file.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "particula/core/types.hpp"
+
+namespace particula {
+
+enum class LaplacianScheme { FatehiManzari, Morris };
+enum class BoundaryModel { SingleLayer, Dummy };
+enum class NormalModel { Kernel, Analytic };
+enum class InitialFlow { Rest, TaylorGreen };
+
+/// A straight wall segment. The fluid lies on its LEFT when walking from `from` to `to`
+/// (so a closed box is listed counter-clockwise). It may slide along itself at `velocity`.
+struct WallSpec {
+  std::string name;
+  Vec2 from, to;
+  Vec2 velocity;  // must be tangential (parallel to to - from)
+};
+
+/// A line probe: Shepard-normalized SPH interpolation of fields at `points` equally spaced
+/// points from `from` to `to` (both ends included), written every `interval` seconds.
+struct ProbeSpec {
+  std::string name;
+  Vec2 from, to;
+  int points = 2;
+  real interval = 0;
+};
+
+struct Case {
+  std::string name;
+  std::string description;
+  std::filesystem::path source;  // the case file it was read from
+
+  // [domain]
+  Vec2 domain_min, domain_max;
+  bool periodic_x = false, periodic_y = false;
+
+  // [resolution]
+  real d0 = 0;
+  real h_over_d0 = 2.6;
+
+  // [fluid]
+  real rho0 = 1000;
+  real nu = 0;  // kinematic viscosity; the file gives fluid.nu or fluid.mu (then nu = mu/rho0)
+  real c = 0;   // artificial sound speed
+  real p0 = 0;  // background pressure of the equation of state
+  Vec2 gravity;
+  bool gravity_in_fluid = false;
+  Vec2 body_force;  // uniform acceleration on the fluid only (e.g. Poiseuille driving)
+
+  // [time]
+  real t_end = 0;
+  real cfl = 0.5;           // alpha of P.29
+  real dt_max = 0;          // 0 = no cap
+  std::int64_t max_steps = 0;  // 0 = unlimited
+
+  // [numerics]
+  LaplacianScheme laplacian = LaplacianScheme::FatehiManzari;
+  BoundaryModel boundary = BoundaryModel::SingleLayer;
+  NormalModel normals = NormalModel::Kernel;
+  real rhie_chow_factor = 1;
+  real shifting_beta = 0.01;
+  int wall_pressure_sweeps = 1;
+
+  // [initial]
+  real perturbation = 0.05;  // fraction of d0
+  std::uint64_t seed = 1;
+  InitialFlow initial_flow = InitialFlow::Rest;
+  real initial_amplitude = 1;  // m/s, for taylor_green
+  bool hydrostatic = false;    // start from hydrostatic density when gravity is in the fluid
+
+  // [output]
+  real output_interval = 0;
+  bool snapshots = true;
+  real snapshot_interval = 0;    // 0 = output_interval
+  real checkpoint_interval = 0;  // 0 = only at the end and on interruption
+
+  // [guard]
+  real rho_min_ratio = 0.5;
+  real rho_max_ratio = 2.0;
+
+  std::vector<WallSpec> walls;
+  std::vector<ProbeSpec> probes;
+
+  real h() const { return h_over_d0 * d0; }
+  real mu() const { return nu * rho0; }
+};
+
+}  // namespace particula

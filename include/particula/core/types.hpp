@@ -1,0 +1,87 @@
+// Basic value types shared by every module and by host and device code.
+//
+// Physics on particles and pairs is written as small inline functions on these plain
+// structs, marked PARTICULA_HD so that the same source compiles for the CPU (OpenMP) and
+// for CUDA kernels. No formula is written twice.
+#pragma once
+
+#include <cmath>
+
+#if defined(__CUDACC__)
+#define PARTICULA_HD __host__ __device__ inline
+#else
+#define PARTICULA_HD inline
+#endif
+
+namespace particula {
+
+/// The scalar type of all physics. Keep it one alias so a float build stays possible.
+using real = double;
+
+/// Spatial dimension. The code is written for 2D; types below are the 2D specialisations.
+inline constexpr int kDim = 2;
+
+struct Vec2 {
+  real x = 0, y = 0;
+};
+
+PARTICULA_HD Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+PARTICULA_HD Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+PARTICULA_HD Vec2 operator-(Vec2 a) { return {-a.x, -a.y}; }
+PARTICULA_HD Vec2 operator*(real s, Vec2 a) { return {s * a.x, s * a.y}; }
+PARTICULA_HD Vec2 operator*(Vec2 a, real s) { return {s * a.x, s * a.y}; }
+PARTICULA_HD Vec2 operator/(Vec2 a, real s) { return {a.x / s, a.y / s}; }
+PARTICULA_HD Vec2& operator+=(Vec2& a, Vec2 b) { a.x += b.x; a.y += b.y; return a; }
+PARTICULA_HD Vec2& operator-=(Vec2& a, Vec2 b) { a.x -= b.x; a.y -= b.y; return a; }
+PARTICULA_HD Vec2& operator*=(Vec2& a, real s) { a.x *= s; a.y *= s; return a; }
+PARTICULA_HD real dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+/// z-component of the 2D cross product a x b.
+PARTICULA_HD real cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+/// Omega (along z) x r.
+PARTICULA_HD Vec2 cross(real omega, Vec2 r) { return {-omega * r.y, omega * r.x}; }
+PARTICULA_HD real norm2(Vec2 a) { return dot(a, a); }
+PARTICULA_HD real norm(Vec2 a) { return std::sqrt(dot(a, a)); }
+/// Rotate a by angle (radians), counter-clockwise.
+PARTICULA_HD Vec2 rotate(Vec2 a, real c, real s) { return {c * a.x - s * a.y, s * a.x + c * a.y}; }
+
+/// General 2x2 matrix, row-major: m[a][b] = xx, xy / yx, yy.
+struct Mat2 {
+  real xx = 0, xy = 0, yx = 0, yy = 0;
+};
+
+PARTICULA_HD Mat2 operator+(const Mat2& a, const Mat2& b) {
+  return {a.xx + b.xx, a.xy + b.xy, a.yx + b.yx, a.yy + b.yy};
+}
+PARTICULA_HD Mat2 operator-(const Mat2& a, const Mat2& b) {
+  return {a.xx - b.xx, a.xy - b.xy, a.yx - b.yx, a.yy - b.yy};
+}
+PARTICULA_HD Mat2 operator*(real s, const Mat2& a) { return {s * a.xx, s * a.xy, s * a.yx, s * a.yy}; }
+PARTICULA_HD Mat2& operator+=(Mat2& a, const Mat2& b) {
+  a.xx += b.xx; a.xy += b.xy; a.yx += b.yx; a.yy += b.yy;
+  return a;
+}
+PARTICULA_HD Mat2 identity2() { return {1, 0, 0, 1}; }
+PARTICULA_HD Mat2 transpose(const Mat2& a) { return {a.xx, a.yx, a.xy, a.yy}; }
+PARTICULA_HD real trace(const Mat2& a) { return a.xx + a.yy; }
+PARTICULA_HD real det(const Mat2& a) { return a.xx * a.yy - a.xy * a.yx; }
+/// a (x) b: (a b^T)_{kl} = a_k b_l.
+PARTICULA_HD Mat2 outer(Vec2 a, Vec2 b) { return {a.x * b.x, a.x * b.y, a.y * b.x, a.y * b.y}; }
+/// M . v (matrix times column vector).
+PARTICULA_HD Vec2 operator*(const Mat2& m, Vec2 v) { return {m.xx * v.x + m.xy * v.y, m.yx * v.x + m.yy * v.y}; }
+/// v . M (row vector times matrix): (v.M)_l = sum_k v_k M_kl.
+PARTICULA_HD Vec2 operator*(Vec2 v, const Mat2& m) { return {v.x * m.xx + v.y * m.yx, v.x * m.xy + v.y * m.yy}; }
+PARTICULA_HD Mat2 operator*(const Mat2& a, const Mat2& b) {
+  return {a.xx * b.xx + a.xy * b.yx, a.xx * b.xy + a.xy * b.yy, a.yx * b.xx + a.yy * b.yx,
+          a.yx * b.xy + a.yy * b.yy};
+}
+/// Double contraction A : B = sum_kl A_kl B_kl.
+PARTICULA_HD real ddot(const Mat2& a, const Mat2& b) {
+  return a.xx * b.xx + a.xy * b.xy + a.yx * b.yx + a.yy * b.yy;
+}
+/// Symmetric part (A + A^T)/2.
+PARTICULA_HD Mat2 sym(const Mat2& a) {
+  const real o = 0.5 * (a.xy + a.yx);
+  return {a.xx, o, o, a.yy};
+}
+
+}  // namespace particula

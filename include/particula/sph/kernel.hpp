@@ -1,0 +1,42 @@
+// Wendland C2 kernel in 2D with h the cut-off radius (method.md section 2, P.37).
+#pragma once
+
+#include "particula/core/types.hpp"
+
+namespace particula {
+
+/// W(r,h) = 7/(pi h^2) (1-q)^4 (4q+1) for q = r/h < 1, else 0.
+/// h is the CUT-OFF radius (the support ends at r = h), not half of it.
+struct WendlandC2 {
+  real h = 1;
+  real w0 = 0;      // 7 / (pi h^2)
+  real inv_h = 1;
+
+  WendlandC2() = default;
+  explicit WendlandC2(real cutoff) : h(cutoff), w0(7.0 / (M_PI * cutoff * cutoff)), inv_h(1.0 / cutoff) {}
+
+  PARTICULA_HD real W(real r) const {
+    const real q = r * inv_h;
+    if (q >= 1) return 0;
+    const real a = 1 - q;
+    const real a2 = a * a;
+    return w0 * a2 * a2 * (4 * q + 1);
+  }
+  /// dW/dr = -20 W0 q (1-q)^3 / h  (negative inside the support).
+  PARTICULA_HD real dW(real r) const {
+    const real q = r * inv_h;
+    if (q >= 1) return 0;
+    const real a = 1 - q;
+    return -20 * w0 * q * a * a * a * inv_h;
+  }
+  /// grad_i W_ij = W'(r) e_ij with e_ij = r_ij / r: returns the factor F = W'(r)/r so that
+  /// grad_i W_ij = F r_ij. Finite at r -> 0 (F -> -20 W0 / h^2).
+  PARTICULA_HD real F(real r) const {
+    const real q = r * inv_h;
+    if (q >= 1) return 0;
+    const real a = 1 - q;
+    return -20 * w0 * a * a * a * inv_h * inv_h;
+  }
+};
+
+}  // namespace particula

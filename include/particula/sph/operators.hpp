@@ -1,0 +1,160 @@
+// Consistent SPH operators (method.md sections 3-5): the per-pair and per-particle pieces
+// of the renormalized gradient, the Fatehi-Manzari Laplacian, the Morris Laplacian and the
+// Rhie-Chow terms. One source of truth shared by the CPU loops and CUDA kernels.
+//
+// Conventions: r_ij = r_i - r_j, e_ij = r_ij / |r_ij|, gradW_ij = grad_i W_ij = W'(r) e_ij,
+// w_j the volume of neighbour j. A gradient tensor L has L_ab = d_a u_b.
+#pragma once
+
+#include "particula/core/types.hpp"
+
+namespace particula {
+
+/// Renormalization tensor (P.6): B_i = -[ sum_j w_j r_ij (x) gradW_ij ]^-1, computed from the
+/// accumulated sum S = sum_j w_j r_ij (x) gradW_ij. Returns false (and B = I) when S is (near)
+/// singular: |det S| below `rel_tol` times the square of its trace, e.g. a particle with too few
+/// or collinear neighbours. The caller counts such events.
+PARTICULA_HD bool renormalization_tensor(const Mat2& S, Mat2& B, real rel_tol = 1e-6) {
+  const real d = det(S);
+  const real t = trace(S);
+  if (!(std::fabs(d) > rel_tol * t * t)) {
+    B = identity2();
+    return false;
+  }
+  const real inv = -1.0 / d;  // minus sign of the definition folded in
+  B = {inv * S.yy, -inv * S.xy, -inv * S.yx, inv * S.xx};
+  return true;
+}
+
+/// Contribution of neighbour j to S = sum_j w_j r_ij (x) gradW_ij, with gradW_ij = F r_ij.
+PARTICULA_HD Mat2 renormalization_pair(real w_j, real F, Vec2 r_ij) { return (w_j * F) * outer(r_ij, r_ij); }
+
+/// Contribution of neighbour j to the renormalized gradient of a scalar (P.7):
+/// w_j (B_i . gradW_ij) (u_j - u_i). `BgW` is B_i . gradW_ij already multiplied by w_j.
+PARTICULA_HD Vec2 gradient_pair(Vec2 wBgW, real du_ji) { return du_ji * wBgW; }
+
+/// Contribution to the gradient of a vector field: (w B gradW) (x) (V_j - V_i).
+PARTICULA_HD Mat2 vector_gradient_pair(Vec2 wBgW, Vec2 dV_ji) { return outer(wBgW, dV_ji); }
+
+// ---- Fatehi-Manzari second derivative (P.10-P.11) -------------------------------------------
+
+/// Fully symmetric 3rd-order 2D tensor: components xxx, xxy, xyy, yyy.
+struct Sym3 {
+  real c[4] = {0, 0, 0, 0};
+};
+/// Fully symmetric 4th-order 2D tensor: components xxxx, xxxy, xxyy, xyyy, yyyy.
+struct Sym4 {
+  real c[5] = {0, 0, 0, 0, 0};
+};
+
+/// Index of a component of a fully symmetric tensor = number of y indices.
+PARTICULA_HD real sym3_at(const Sym3& t, int a, int b, int c) { return t.c[a + b + c]; }
+PARTICULA_HD real sym4_at(const Sym4& t, int a, int b, int c, int d) { return t.c[a + b + c + d]; }
+
+/// Adds s * e(x)e(x)e to a Sym3.
+PARTICULA_HD void add_eee(Sym3& t, real s, Vec2 e) {
+  const real xx = e.x * e.x, yy = e.y * e.y;
+  t.c[0] += s * xx * e.x;
+  t.c[1] += s * xx * e.y;
+  t.c[2] += s * e.x * yy;
+  t.c[3] += s * yy * e.y;
+}
+/// Adds s * e(x)e(x)e(x)e to a Sym4.
+PARTICULA_HD void add_eeee(Sym4& t, real s, Vec2 e) {
+  const real xx = e.x * e.x, yy = e.y * e.y, xy = e.x * e.y;
+  t.c[0] += s * xx * xx;
+  t.c[1] += s * xx * xy;
+  t.c[2] += s * xx * yy;
+  t.c[3] += s * xy * yy;
+  t.c[4] += s * yy * yy;
+}
+
+/// The three moment sums that define Bhat_i (method.md section 4), all fully symmetric because
+/// gradW_ij is parallel to e_ij:
+///   T4 = sum_j w_j r_ij e(x)gradW(x)e(x)e  = sum w r W' e e e e
+///   T3 = sum_j w_j e(x)e(x)gradW           = sum w W' e e e
+///   Q3 = sum_j w_j r(x)r(x)gradW           = sum w r^2 W' e e e
+struct LaplacianMoments {
+  Sym4 T4;
+  Sym3 T3;
+  Sym3 Q3;
+};
+
+/// Adds neighbour j to the moments. `dW` = W'(r_ij), `e` = e_ij.
+PARTICULA_HD void laplacian_moments_pair(LaplacianMoments& m, real w_j, real r, real dW, Vec2 e) {
+  const real s = w_j * dW;
+  add_eeee(m.T4, s * r, e);
+  add_eee(m.T3, s, e);
+  add_eee(m.Q3, s * r * r, e);
+}
+
+/// Solves Bhat : M = -I for the symmetric Bhat (P.11), with
+///   M_abcd = T4_abcd + sum_ef T3_abe B_ef Q3_fcd.
+/// In 2D a 3x3 system in (Bhat_xx, Bhat_xy, Bhat_yy). Returns false (Bhat = I) when singular.
+PARTICULA_HD bool laplacian_correction_tensor(const LaplacianMoments& m, const Mat2& B, Mat2& Bhat,
+                                              real rel_tol = 1e-9) {
+  const real Bm[2][2] = {{B.xx, B.xy}, {B.yx, B.yy}};
+  // BQ_ecd = sum_f B_ef Q3_fcd for the symmetric pairs cd (c <= d): index cd -> (0,0),(0,1),(1,1).
+  const int pc[3] = {0, 0, 1}, pd[3] = {0, 1, 1};
+  real BQ[2][3];
+  for (int e = 0; e < 2; ++e)
+    for (int k = 0; k < 3; ++k)
+      BQ[e][k] = Bm[e][0] * sym3_at(m.Q3, 0, pc[k], pd[k]) + Bm[e][1] * sym3_at(m.Q3, 1, pc[k], pd[k]);
+  // A[row = cd][col = ab] = multiplicity(ab) * M_abcd.
+  real A[3][3];
+  const real mult[3] = {1, 2, 1};
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col) {
+      const int a = pc[col], b = pd[col], c = pc[row], d = pd[row];
+      const real M = sym4_at(m.T4, a, b, c, d) + sym3_at(m.T3, a, b, 0) * BQ[0][row] +
+                     sym3_at(m.T3, a, b, 1) * BQ[1][row];
+      A[row][col] = mult[col] * M;
+    }
+  const real rhs[3] = {-1, 0, -1};
+  const real D = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+                 A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+  real scale = 0;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) scale = std::fmax(scale, std::fabs(A[r][c]));
+  if (!(std::fabs(D) > rel_tol * scale * scale * scale)) {
+    Bhat = identity2();
+    return false;
+  }
+  real x[3];
+  for (int k = 0; k < 3; ++k) {
+    real Ak[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) Ak[r][c] = (c == k) ? rhs[r] : A[r][c];
+    const real Dk = Ak[0][0] * (Ak[1][1] * Ak[2][2] - Ak[1][2] * Ak[2][1]) -
+                    Ak[0][1] * (Ak[1][0] * Ak[2][2] - Ak[1][2] * Ak[2][0]) +
+                    Ak[0][2] * (Ak[1][0] * Ak[2][1] - Ak[1][1] * Ak[2][0]);
+    x[k] = Dk / D;
+  }
+  Bhat = {x[0], x[1], x[1], x[2]};
+  return true;
+}
+
+/// Pair weight of the Fatehi-Manzari Laplacian: since e (x) gradW = W' e (x) e,
+///   Bhat : 2 w_j (e (x) gradW) = 2 w_j W' (e . Bhat . e).
+PARTICULA_HD real fm_pair_weight(const Mat2& Bhat, real w_j, real dW, Vec2 e) {
+  return 2 * w_j * dW * dot(e, Bhat * e);
+}
+
+/// Fatehi-Manzari Laplacian pair term for a scalar (P.10):
+///   weight * [ (u_i - u_j)/r_ij - e_ij . <grad u>_i ].
+PARTICULA_HD real fm_laplacian_pair(real weight, real du_ij, real r, Vec2 e, Vec2 grad_i) {
+  return weight * (du_ij / r - dot(e, grad_i));
+}
+
+/// Same for a vector field, with the gradient tensor L_ab = d_a V_b: e . L is the directional
+/// derivative of each component along e.
+PARTICULA_HD Vec2 fm_laplacian_pair(real weight, Vec2 dV_ij, real r, Vec2 e, const Mat2& L_i) {
+  return weight * (dV_ij / r - e * L_i);
+}
+
+/// Morris/Brookshaw Laplacian pair term (P.8): 2 w_j (u_i - u_j)/r_ij  e_ij . gradW_ij.
+/// Not exact for quadratics next to walls; kept as the baseline.
+PARTICULA_HD real morris_pair_weight(real w_j, real dW) { return 2 * w_j * dW; }
+
+}  // namespace particula

@@ -1,0 +1,1 @@
+namespace particula { int placeholder_symbol = 0; }
