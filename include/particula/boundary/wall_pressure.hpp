@@ -1,0 +1,46 @@
+// The single-layer no-slip boundary (method.md section 6, P.18-P.20): normals and the pressure
+// of a boundary particle from the normal component of the momentum equation.
+#pragma once
+
+#include <cmath>
+
+#include "particula/core/types.hpp"
+
+namespace particula {
+
+/// P.18: n_i = sum_j w_j gradW_ij / |sum_j w_j gradW_ij|, pointing from the solid into the
+/// fluid (gradW_ij points from i towards j). Returns false when the sum vanishes.
+PARTICULA_HD bool kernel_normal(Vec2 sum_w_gradW, Vec2& n) {
+  const real len = norm(sum_w_gradW);
+  if (!(len > 0)) return false;
+  n = sum_w_gradW / len;
+  return true;
+}
+
+/// Running sums of P.20 over the neighbours j of boundary particle i:
+///   num = sum_j w_j (P_j / rhobar_ij) (B_i gradW_ij) . n_i
+///   den = sum_j w_j (1   / rhobar_ij) (B_i gradW_ij) . n_i
+struct WallPressureSums {
+  real num = 0, den = 0, scale = 0;
+  int fluid_neighbors = 0;
+};
+
+PARTICULA_HD void wall_pressure_pair(WallPressureSums& s, Vec2 wBgW, Vec2 n, real p_j, real rhobar, bool j_is_fluid) {
+  const real k = dot(wBgW, n) / rhobar;
+  s.num += k * p_j;
+  s.den += k;
+  s.scale += std::fabs(k);
+  s.fluid_neighbors += j_is_fluid ? 1 : 0;
+}
+
+/// P.20: P_i = [num + a_i.n_i - nu<lap V>_i.n_i - g.n_i] / den, with a_i the boundary
+/// particle's acceleration, nu<lap V>_i = (div tau)/rho evaluated at i, and g the gravity kept
+/// in the fluid (zero when P is the dynamic pressure). Returns false (P untouched) when the
+/// denominator vanishes, e.g. no fluid neighbour: the caller keeps the previous pressure.
+PARTICULA_HD bool wall_pressure(const WallPressureSums& s, Vec2 a, Vec2 nu_lap_v, Vec2 g, Vec2 n, real& p) {
+  if (s.fluid_neighbors == 0 || !(s.den > 1e-6 * s.scale)) return false;
+  p = (s.num + dot(a - nu_lap_v - g, n)) / s.den;
+  return true;
+}
+
+}  // namespace particula

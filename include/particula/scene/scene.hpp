@@ -1,0 +1,43 @@
+// Builds the initial particles, rigid groups and physics parameters from a Case.
+#pragma once
+
+#include <vector>
+
+#include "particula/case/case.hpp"
+#include "particula/neighbors/domain.hpp"
+#include "particula/solver/particles.hpp"
+#include "particula/solver/rigid_group.hpp"
+#include "particula/solver/solver.hpp"
+
+namespace particula {
+
+struct Scene {
+  PhysicsParams params;
+  Domain domain;
+  Particles particles;
+  std::vector<RigidGroup> groups;
+  real dx = 0, dy = 0;  // actual fluid lattice spacing (d0 adjusted to fit the box exactly)
+};
+
+PhysicsParams physics_params(const Case& c);
+Scene build_scene(const Case& c);
+
+/// Deterministic, platform-independent random numbers (splitmix64) for the seeded lattice
+/// perturbation: the same seed gives the same particles on every compiler and machine.
+class SplitMix64 {
+ public:
+  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next() {
+    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  /// Uniform in [-1, 1).
+  double symmetric() { return static_cast<double>(next() >> 11) * 0x1.0p-52 - 1.0; }
+
+ private:
+  std::uint64_t state_;
+};
+
+}  // namespace particula

@@ -1,0 +1,42 @@
+// Particle state as a structure of arrays. Boundary particles (wall and body surfaces, and
+// dummy particles of the baseline) occupy the fixed block [0, n_boundary) so that rigid
+// groups can address them by index; fluid particles follow and are periodically reordered
+// by cell for locality.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "particula/core/types.hpp"
+
+namespace particula {
+
+enum class Kind : std::uint8_t { Fluid = 0, Boundary = 1, Dummy = 2 };
+
+struct Particles {
+  std::size_t n_boundary = 0;
+
+  // every particle
+  std::vector<Vec2> x, v;
+  std::vector<real> rho, p, m;
+  std::vector<Kind> kind;
+  std::vector<std::int32_t> group;  // rigid group (wall or body) of a boundary particle, -1 for fluid
+  std::vector<std::int64_t> id;     // stable identity across reordering
+
+  // boundary block only (size n_boundary)
+  std::vector<Vec2> local;          // position in the group's body frame
+  std::vector<Vec2> normal_local;   // analytic outward normal in the body frame
+  std::vector<real> ds;             // surface length represented (0 for dummy particles)
+  std::vector<Vec2> acc;            // acceleration of the surface point
+  std::vector<Vec2> normal;         // current normal (P.18 or analytic)
+  std::vector<std::int32_t> source; // dummy particles: the surface particle they copy P, rho from
+
+  std::size_t size() const { return x.size(); }
+  bool is_fluid(std::size_t i) const { return i >= n_boundary; }
+
+  void resize(std::size_t n);
+  void resize_boundary(std::size_t nb);
+};
+
+}  // namespace particula

@@ -1,0 +1,123 @@
+// The time loop of method.md section 9: predictor-corrector with frozen positions, the
+// single-layer wall pressure, rigid groups, adaptive dt and particle shifting.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "particula/neighbors/domain.hpp"
+#include "particula/neighbors/neighbor_list.hpp"
+#include "particula/solver/particles.hpp"
+#include "particula/solver/rigid_group.hpp"
+#include "particula/sph/kernel.hpp"
+
+namespace particula {
+
+/// Everything the physics needs, in SI units (filled from a Case by the scene builder).
+struct PhysicsParams {
+  real d0 = 0, h = 0;
+  real rho0 = 1000, nu = 0, c = 0, p0 = 0;
+  Vec2 gravity;
+  bool gravity_in_fluid = false;
+  Vec2 body_force;
+  real cfl = 0.5;
+  real dt_max = 0;
+  bool fatehi_manzari = true;  // false: Morris Laplacian (baseline)
+  bool single_layer = true;    // false: dummy-particle boundary (baseline)
+  bool kernel_normals = true;  // false: analytic normals
+  real rhie_chow_factor = 1;
+  real shifting_beta = 0.01;
+  int wall_pressure_sweeps = 1;
+  real rho_min_ratio = 0.5, rho_max_ratio = 2.0;
+  int reorder_interval = 50;  // steps between cell reorderings of the fluid block
+};
+
+/// Counters of guarded events (written to the run log).
+struct SolverCounters {
+  std::int64_t singular_B = 0;      // renormalization matrix singular -> B = I
+  std::int64_t singular_Bhat = 0;   // Laplacian system singular -> Bhat = I
+  std::int64_t wall_pressure_kept = 0;  // P.20 denominator vanished -> previous P kept
+  std::int64_t normal_fallback = 0;     // P.18 sum vanished -> analytic normal used
+};
+
+/// A numerical failure detected after a step (exit code 3).
+struct Failure {
+  std::string what;
+  std::int64_t particle_id = -1;
+  Vec2 position;
+};
+
+class Solver {
+ public:
+  Solver(PhysicsParams params, Domain domain, Particles particles, std::vector<RigidGroup> groups);
+
+  /// Advances one full time step. Returns the failure, if any, detected at its end.
+  std::optional<Failure> step();
+
+  real time() const { return t_; }
+  real last_dt() const { return dt_; }
+  std::int64_t step_count() const { return steps_; }
+  const Particles& particles() const { return P_; }
+  Particles& particles() { return P_; }
+  const std::vector<RigidGroup>& groups() const { return groups_; }
+  const Domain& domain() const { return domain_; }
+  const PhysicsParams& params() const { return prm_; }
+  const SolverCounters& counters() const { return counters_; }
+  const WendlandC2& kernel() const { return kernel_; }
+  std::size_t last_pair_count() const { return nl_.pair_count(); }
+
+  /// Time step of P.29-P.31 for the current state (rebuilds nothing: uses the last list).
+  real stable_dt() const;
+
+  /// Restores time and step counter (checkpoints).
+  void set_clock(real t, std::int64_t steps) { t_ = t; steps_ = steps; }
+
+  /// Rebuilds neighbours and position-only quantities for the current positions (used before
+  /// output and by tests of the operators).
+  void refresh_geometry();
+
+  // Read-only views of the per-particle fields of the last evaluation (tests, output).
+  const std::vector<Mat2>& B() const { return B_; }
+  const std::vector<Mat2>& Bhat() const { return Bhat_; }
+  const std::vector<Mat2>& grad_v() const { return gradV_; }
+  const std::vector<Vec2>& lap_v() const { return lapV_; }
+  const std::vector<Vec2>& grad_p_over_rho() const { return G_; }
+  const NeighborList& neighbors() const { return nl_; }
+
+  /// Sweeps exposed for tests: derivatives of given fields on the current neighbour list.
+  void compute_velocity_derivatives(const std::vector<Vec2>& v);
+  void compute_pressure_gradient(const std::vector<real>& p, const std::vector<real>& rho);
+
+ private:
+  void place_boundary(real t);
+  void set_boundary_kinematics();
+  void update_volumes();
+  void geometry_sweep();
+  void rhie_chow_sweep(const std::vector<real>& p, const std::vector<real>& rho);
+  void boundary_pressure(const std::vector<real>& rho_ref);
+  void group_loads();
+  void shift_particles(real dt, real vmax);
+  void reorder_fluid();
+  std::optional<Failure> check_health() const;
+  real max_speed() const;
+
+  PhysicsParams prm_;
+  Domain domain_;
+  Particles P_;
+  std::vector<RigidGroup> groups_;
+  WendlandC2 kernel_;
+  CellGrid grid_;
+  NeighborList nl_;
+  SolverCounters counters_;
+  real t_ = 0, dt_ = 0;
+  std::int64_t steps_ = 0;
+
+  // per-particle work arrays
+  std::vector<real> vol_, rbar_, rc_, rho_n_, rho_s_, div_v_;
+  std::vector<Mat2> B_, Bhat_, gradV_, gradV_n_;
+  std::vector<Vec2> lapV_, G_, v_n_, v_s_, nsum_;
+};
+
+}  // namespace particula

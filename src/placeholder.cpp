@@ -1,1 +1,0 @@
-namespace particula { int placeholder_symbol = 0; }

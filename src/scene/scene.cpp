@@ -1,0 +1,251 @@
+#include "particula/scene/scene.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "particula/fluid/fluid.hpp"
+
+namespace particula {
+
+PhysicsParams physics_params(const Case& c) {
+  PhysicsParams p;
+  p.d0 = c.d0;
+  p.h = c.h();
+  p.rho0 = c.rho0;
+  p.nu = c.nu;
+  p.c = c.c;
+  p.p0 = c.p0;
+  p.gravity = c.gravity;
+  p.gravity_in_fluid = c.gravity_in_fluid;
+  p.body_force = c.body_force;
+  p.cfl = c.cfl;
+  p.dt_max = c.dt_max;
+  p.fatehi_manzari = c.laplacian == LaplacianScheme::FatehiManzari;
+  p.single_layer = c.boundary == BoundaryModel::SingleLayer;
+  p.kernel_normals = c.normals == NormalModel::Kernel;
+  p.rhie_chow_factor = c.rhie_chow_factor;
+  p.shifting_beta = c.shifting_beta;
+  p.wall_pressure_sweeps = c.wall_pressure_sweeps;
+  p.rho_min_ratio = c.rho_min_ratio;
+  p.rho_max_ratio = c.rho_max_ratio;
+  return p;
+}
+
+namespace {
+
+/// Distance from point p to the segment [a, b].
+real segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 ab = b - a;
+  const real L2 = norm2(ab);
+  real s = L2 > 0 ? dot(p - a, ab) / L2 : 0;
+  s = std::fmax(0, std::fmin(1, s));
+  return norm(p - (a + s * ab));
+}
+
+Vec2 left_normal(const WallSpec& w) {
+  const Vec2 t = (w.to - w.from) / norm(w.to - w.from);
+  return {-t.y, t.x};
+}
+
+bool same_point(const Domain& d, Vec2 a, Vec2 b, real tol) { return norm(d.separation(a, b)) < tol; }
+
+/// One sampled surface point of a wall before it is placed in the particle arrays.
+struct SurfacePoint {
+  Vec2 x, normal;
+  real ds;
+  bool corner;
+  Vec2 corner_normal2;  // the other wall's normal at a corner
+};
+
+/// Samples wall w at spacing ~d0: points from + k (to - from)/n for k = 0..n-1, plus the end
+/// point unless another wall starts there (closed polygons) or it is the periodic image of
+/// the start. A point shared with the previous wall (a corner) gets the mean normal.
+std::vector<SurfacePoint> sample_wall(const Case& c, const Domain& dom, std::size_t w) {
+  const WallSpec& ws = c.walls[w];
+  const real len = norm(ws.to - ws.from);
+  const int n = std::max(1, static_cast<int>(std::lround(len / c.d0)));
+  const real ds = len / n;
+  const Vec2 nrm = left_normal(ws);
+  const real tol = 1e-6 * c.d0;
+  std::vector<SurfacePoint> pts;
+  for (int k = 0; k <= n; ++k) {
+    const Vec2 x = ws.from + (static_cast<real>(k) / n) * (ws.to - ws.from);
+    SurfacePoint sp{x, nrm, ds, false, {}};
+    if (k == n) {
+      if (same_point(dom, x, ws.from, tol)) break;
+      bool starts_other = false;
+      for (std::size_t o = 0; o < c.walls.size(); ++o)
+        if (o != w && same_point(dom, x, c.walls[o].from, tol)) starts_other = true;
+      if (starts_other) break;
+    }
+    if (k == 0) {
+      for (std::size_t o = 0; o < c.walls.size(); ++o)
+        if (o != w && same_point(dom, x, c.walls[o].to, tol)) {
+          const Vec2 n2 = left_normal(c.walls[o]);
+          const Vec2 mean = nrm + n2;
+          if (norm(mean) > 1e-12) {
+            sp.normal = mean / norm(mean);
+            sp.corner = true;
+            sp.corner_normal2 = n2;
+          }
+        }
+    }
+    pts.push_back(sp);
+  }
+  return pts;
+}
+
+/// Dummy particles of the baseline boundary (method.md section 6, last paragraph): `layers`
+/// rows behind each surface point along -n; a corner gets the full square block.
+std::vector<std::pair<Vec2, std::size_t>> dummy_points(const std::vector<SurfacePoint>& surf, const WallSpec& ws,
+                                                       real d0, int layers) {
+  std::vector<std::pair<Vec2, std::size_t>> out;
+  const Vec2 n1 = left_normal(ws);
+  for (std::size_t s = 0; s < surf.size(); ++s) {
+    const auto& sp = surf[s];
+    if (sp.corner) {
+      for (int a = 0; a <= layers; ++a)
+        for (int b = 0; b <= layers; ++b)
+          if (a != 0 || b != 0) out.push_back({sp.x - (a * d0) * n1 - (b * d0) * sp.corner_normal2, s});
+    } else {
+      for (int k = 1; k <= layers; ++k) out.push_back({sp.x - (k * d0) * sp.normal, s});
+    }
+  }
+  return out;
+}
+
+/// Volume factor of a corner particle. A single layer stands for the solid behind it. With
+/// the volume d0 ds of a flat-wall particle the zeroth kernel moment s_i = sum_j w_j gradW_ij
+/// of the fluid next to a straight wall nearly vanishes (|s| = 0.02/d0 for h = 2.6 d0), so a
+/// fluid particle pushed against the wall is compressed rather than sucked in (with the
+/// difference form of the renormalized gradient a particle whose s points away from the wall
+/// gets lower pressure as it approaches and is pulled further in). At a corner where the
+/// fluid angle is 90 degrees the same moment at the corner fluid particle is 0.22/d0 with a
+/// unit factor and 0.03/d0 with a factor 2 (computed on the regular lattice): we scale the
+/// corner volume linearly in the solid wedge angle, 1 for a flat wall and 2 for a right-angled
+/// corner (docs/method-notes.md). Without it a loaded box corner blows up.
+real corner_volume_factor(const SurfacePoint& sp, const WallSpec& ws) {
+  const Vec2 n1 = left_normal(ws), n2 = sp.corner_normal2;
+  const real fluid_angle = M_PI - std::acos(std::fmax(-1.0, std::fmin(1.0, dot(n1, n2))));
+  const real solid_angle = 2 * M_PI - fluid_angle;
+  return std::fmax(1.0, 2 * solid_angle / M_PI - 1);
+}
+
+}  // namespace
+
+Scene build_scene(const Case& c) {
+  Scene sc;
+  sc.params = physics_params(c);
+  sc.domain = Domain{c.domain_min, c.domain_max, c.periodic_x, c.periodic_y};
+  const Domain& dom = sc.domain;
+  Particles& P = sc.particles;
+  const real d0 = c.d0;
+  const int dummy_layers = static_cast<int>(std::ceil(c.h_over_d0 - 1e-9));
+
+  // ---- boundary block: one rigid group per wall, surface particles then its dummies
+  std::vector<Vec2> bx, bn;
+  std::vector<real> bds, bvol;
+  std::vector<Kind> bk;
+  std::vector<std::int32_t> bsrc, bgroup;
+  for (std::size_t w = 0; w < c.walls.size(); ++w) {
+    const WallSpec& ws = c.walls[w];
+    RigidGroup g;
+    g.name = ws.name;
+    g.is_wall = true;
+    g.motion = norm(ws.velocity) > 0 ? Motion::Prescribed : Motion::Fixed;
+    g.vel = ws.velocity;
+    g.first = bx.size();
+    const auto surf = sample_wall(c, dom, w);
+    const std::size_t first_surface = bx.size();
+    for (const auto& sp : surf) {
+      bx.push_back(sp.x);
+      bn.push_back(sp.normal);
+      bds.push_back(sp.ds);
+      bvol.push_back(sp.ds * d0 * (sp.corner ? corner_volume_factor(sp, ws) : 1.0));
+      bk.push_back(Kind::Boundary);
+      bsrc.push_back(-1);
+      bgroup.push_back(static_cast<std::int32_t>(w));
+    }
+    if (c.boundary == BoundaryModel::Dummy) {
+      for (const auto& [x, s] : dummy_points(surf, ws, d0, dummy_layers)) {
+        bx.push_back(x);
+        bn.push_back(surf[s].normal);
+        bds.push_back(0);
+        bvol.push_back(d0 * d0);
+        bk.push_back(Kind::Dummy);
+        bsrc.push_back(static_cast<std::int32_t>(first_surface + s));
+        bgroup.push_back(static_cast<std::int32_t>(w));
+      }
+    }
+    g.count = bx.size() - g.first;
+    sc.groups.push_back(g);
+  }
+
+  // ---- fluid lattice at cell centres, spacing adjusted so the box holds a whole number
+  const Vec2 L = dom.size();
+  const int nx = std::max(1, static_cast<int>(std::lround(L.x / d0)));
+  const int ny = std::max(1, static_cast<int>(std::lround(L.y / d0)));
+  sc.dx = L.x / nx;
+  sc.dy = L.y / ny;
+  SplitMix64 rng(c.seed);
+  std::vector<Vec2> fx;
+  for (int iy = 0; iy < ny; ++iy)
+    for (int ix = 0; ix < nx; ++ix) {
+      const Vec2 x{dom.lo.x + (ix + 0.5) * sc.dx, dom.lo.y + (iy + 0.5) * sc.dy};
+      bool keep = true;
+      // Fluid within d0/2 of a solid surface is removed (a lattice point exactly d0/2 from a
+      // wall lying on the box edge stays).
+      for (const auto& ws : c.walls)
+        if (segment_distance(x, ws.from, ws.to) < 0.5 * d0 * (1 - 1e-9)) keep = false;
+      if (!keep) continue;
+      const real px = rng.symmetric(), py = rng.symmetric();
+      fx.push_back(dom.wrap(x + (c.perturbation * d0) * Vec2{px, py}));
+    }
+
+  const std::size_t nb = bx.size(), n = nb + fx.size();
+  P.resize(n);
+  P.resize_boundary(nb);
+  for (std::size_t i = 0; i < nb; ++i) {
+    P.x[i] = bx[i];
+    P.local[i] = bx[i];  // walls: body frame = world frame at t = 0
+    P.normal_local[i] = bn[i];
+    P.normal[i] = bn[i];
+    P.ds[i] = bds[i];
+    P.kind[i] = bk[i];
+    P.source[i] = bsrc[i];
+    P.group[i] = bgroup[i];
+    P.rho[i] = c.rho0;
+    P.p[i] = c.p0;
+    P.m[i] = c.rho0 * bvol[i];
+  }
+
+  // Hydrostatic start: P = rho0 g.(x - x_top), x_top the domain corner highest against g.
+  Vec2 x_top = dom.lo;
+  for (Vec2 corner : {dom.lo, dom.hi, Vec2{dom.lo.x, dom.hi.y}, Vec2{dom.hi.x, dom.lo.y}})
+    if (dot(c.gravity, corner) < dot(c.gravity, x_top)) x_top = corner;
+  const bool hydrostatic = c.hydrostatic && c.gravity_in_fluid;
+  const real U = c.initial_amplitude;
+  for (std::size_t k = 0; k < fx.size(); ++k) {
+    const std::size_t i = nb + k;
+    const Vec2 x = fx[k];
+    P.x[i] = x;
+    P.kind[i] = Kind::Fluid;
+    P.group[i] = -1;
+    real p = c.p0;
+    if (hydrostatic) p += c.rho0 * dot(c.gravity, x - x_top);
+    if (c.initial_flow == InitialFlow::TaylorGreen) {
+      // u = -U cos(2 pi x) sin(2 pi y), v = U sin(2 pi x) cos(2 pi y) on the unit-scaled box,
+      // p = -rho U^2 (cos 4 pi x + cos 4 pi y) / 4.
+      const real sx = 2 * M_PI * (x.x - dom.lo.x) / L.x, sy = 2 * M_PI * (x.y - dom.lo.y) / L.y;
+      P.v[i] = {-U * std::cos(sx) * std::sin(sy), U * std::sin(sx) * std::cos(sy)};
+      p += -c.rho0 * U * U * (std::cos(2 * sx) + std::cos(2 * sy)) / 4;
+    }
+    P.p[i] = p;
+    P.rho[i] = density_from_pressure(p, c.rho0, c.c, c.p0);
+    P.m[i] = P.rho[i] * sc.dx * sc.dy;
+  }
+  for (std::size_t i = 0; i < n; ++i) P.id[i] = static_cast<std::int64_t>(i);
+  return sc;
+}
+
+}  // namespace particula

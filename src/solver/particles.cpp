@@ -1,0 +1,26 @@
+#include "particula/solver/particles.hpp"
+
+namespace particula {
+
+void Particles::resize(std::size_t n) {
+  x.resize(n);
+  v.resize(n);
+  rho.resize(n);
+  p.resize(n);
+  m.resize(n);
+  kind.resize(n, Kind::Fluid);
+  group.resize(n, -1);
+  id.resize(n);
+}
+
+void Particles::resize_boundary(std::size_t nb) {
+  n_boundary = nb;
+  local.resize(nb);
+  normal_local.resize(nb);
+  ds.resize(nb);
+  acc.resize(nb);
+  normal.resize(nb);
+  source.resize(nb, -1);
+}
+
+}  // namespace particula
