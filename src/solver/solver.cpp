@@ -281,10 +281,12 @@ real Solver::stable_dt() const {
   return dt;
 }
 
-std::optional<Failure> Solver::step() {
+std::optional<Failure> Solver::step(real dt_cap) {
   if (prm_.reorder_interval > 0 && steps_ % prm_.reorder_interval == 0) reorder_fluid();
   refresh_geometry();
-  const real dt = dt_ = stable_dt();
+  dt_ = stable_dt();
+  if (dt_cap > 0) dt_ = std::min(dt_, dt_cap);
+  const real dt = dt_;
   const real g_dt = prm_.rhie_chow_factor * dt;
   const std::size_t n = P_.size(), nb = P_.n_boundary;
   const Vec2 f = prm_.body_force + (prm_.gravity_in_fluid ? prm_.gravity : Vec2{});

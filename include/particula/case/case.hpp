@@ -16,6 +16,8 @@ enum class LaplacianScheme { FatehiManzari, Morris };
 enum class BoundaryModel { SingleLayer, Dummy };
 enum class NormalModel { Kernel, Analytic };
 enum class InitialFlow { Rest, TaylorGreen };
+/// Exact solution a case is compared with (probes get a vx_exact column, summary.json the error).
+enum class ExactSolution { None, Couette, Poiseuille };
 
 /// A straight wall segment. The fluid lies on its LEFT when walking from `from` to `to`
 /// (so a closed box is listed counter-clockwise). It may slide along itself at `velocity`.
@@ -86,6 +88,9 @@ struct Case {
   // [guard]
   real rho_min_ratio = 0.5;
   real rho_max_ratio = 2.0;
+
+  // [validation]
+  ExactSolution exact = ExactSolution::None;
 
   std::vector<WallSpec> walls;
   std::vector<ProbeSpec> probes;

@@ -53,8 +53,9 @@ class Solver {
  public:
   Solver(PhysicsParams params, Domain domain, Particles particles, std::vector<RigidGroup> groups);
 
-  /// Advances one full time step. Returns the failure, if any, detected at its end.
-  std::optional<Failure> step();
+  /// Advances one full time step of at most `dt_cap` (used to land on output and end times).
+  /// Returns the failure, if any, detected at its end.
+  std::optional<Failure> step(real dt_cap = 0);
 
   real time() const { return t_; }
   real last_dt() const { return dt_; }

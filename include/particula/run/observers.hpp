@@ -1,0 +1,61 @@
+// Observers of a run: each writes one kind of output from the solver's state.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "particula/case/case.hpp"
+#include "particula/io/csv.hpp"
+#include "particula/io/vtk.hpp"
+#include "particula/solver/solver.hpp"
+
+namespace particula {
+
+/// particles.pvd + particles/step_<n>.vtp snapshots (pressure, velocity, density, kind, body).
+class SnapshotWriter {
+ public:
+  explicit SnapshotWriter(std::filesystem::path run_dir);
+  void write(const Solver& s);
+
+ private:
+  std::filesystem::path dir_;
+  io::PvdIndex pvd_;
+};
+
+/// One line probe: probe_<name>.csv with time,x,y,vx,vy,p and, when the case declares an
+/// exact solution, vx_exact; also tracks the profile error against it.
+class ProbeWriter {
+ public:
+  ProbeWriter(const std::filesystem::path& run_dir, const ProbeSpec& spec, const Case& c);
+  void write(const Solver& s);
+  /// L2 error of vx against the exact solution at the last write, relative to the peak speed
+  /// (nullopt without an exact solution).
+  std::optional<double> last_error() const { return last_error_; }
+  const ProbeSpec& spec() const { return spec_; }
+
+ private:
+  ProbeSpec spec_;
+  const Case& case_;
+  std::vector<Vec2> points_;
+  io::CsvWriter csv_;
+  std::optional<double> last_error_;
+};
+
+/// bodies.csv: one row per rigid group (walls included) per output, columns of design.md.
+class BodyHistoryWriter {
+ public:
+  explicit BodyHistoryWriter(const std::filesystem::path& run_dir);
+  void write(const Solver& s);
+
+ private:
+  io::CsvWriter csv_;
+};
+
+/// The exact solution the case declares, evaluated at (y, t); nullopt when it has none.
+std::optional<double> exact_vx(const Case& c, Vec2 x, double t);
+/// Peak speed used to normalize profile errors.
+double exact_peak_speed(const Case& c);
+
+}  // namespace particula

@@ -1,0 +1,55 @@
+#include "particula/run/info.hpp"
+
+#include <omp.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fmt/format.h>
+
+#include "particula/case/load.hpp"
+#include "particula/scene/scene.hpp"
+
+namespace particula {
+
+int info_command(const std::filesystem::path& case_file, const std::vector<std::string>& overrides) {
+  Case c;
+  try {
+    c = load_case(case_file, overrides);
+  } catch (const CaseError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+  Scene scene = build_scene(c);
+  const Particles& P = scene.particles;
+  std::size_t n_fluid = 0, n_surface = 0, n_dummy = 0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    if (P.kind[i] == Kind::Fluid) ++n_fluid;
+    else if (P.kind[i] == Kind::Boundary) ++n_surface;
+    else ++n_dummy;
+  }
+  Solver solver(scene.params, scene.domain, scene.particles, scene.groups);
+  const double dt = solver.stable_dt();
+  const double pairs = static_cast<double>(solver.last_pair_count());
+  // Time a few steps to estimate the wall time on this machine.
+  const auto t0 = std::chrono::steady_clock::now();
+  int timed = 0;
+  for (; timed < 5; ++timed)
+    if (solver.step()) break;
+  const double per_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() /
+                          std::max(1, timed);
+  const double steps = std::ceil(c.t_end / dt);
+  // Particle arrays (~30 doubles each with the work arrays) plus the pair list (36 bytes a pair).
+  const double bytes = static_cast<double>(P.size()) * 30 * 8 + pairs * 36;
+  std::printf("case            %s (%s)\n", c.name.c_str(), case_file.string().c_str());
+  std::printf("particles       %zu: %zu fluid, %zu boundary surface, %zu dummy\n", P.size(), n_fluid, n_surface, n_dummy);
+  std::printf("rigid groups    %zu\n", scene.groups.size());
+  std::printf("d0, h           %.6g m, %.6g m (%.3g neighbours per particle)\n", c.d0, c.h(), pairs / P.size());
+  std::printf("initial dt      %.6g s (P.29-P.31, alpha = %g)\n", dt, c.cfl);
+  std::printf("steps           about %.0f to t = %g s\n", steps, c.t_end);
+  std::printf("memory          about %.1f MiB\n", bytes / (1024.0 * 1024.0));
+  std::printf("wall time       about %s on %d threads (%.3g s per step measured over %d steps)\n",
+              fmt::format("{:.0f} s", steps * per_step).c_str(), omp_get_max_threads(), per_step, timed);
+  return 0;
+}
+
+}  // namespace particula

@@ -1,0 +1,114 @@
+#include "particula/run/observers.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "particula/solver/interpolation.hpp"
+#include "particula/validation/analytic.hpp"
+
+namespace particula {
+
+// ---- snapshots ------------------------------------------------------------------------------
+
+SnapshotWriter::SnapshotWriter(std::filesystem::path run_dir) : dir_(std::move(run_dir)) {
+  std::filesystem::create_directories(dir_ / "particles");
+}
+
+void SnapshotWriter::write(const Solver& s) {
+  const Particles& P = s.particles();
+  const std::size_t n = P.size();
+  io::VtkArray pressure{"pressure", 1, std::vector<double>(P.p.begin(), P.p.end())};
+  io::VtkArray density{"density", 1, std::vector<double>(P.rho.begin(), P.rho.end())};
+  io::VtkIntArray kind{"kind", 1, std::vector<std::int32_t>(n)}, body{"body", 1, std::vector<std::int32_t>(n)};
+  io::VtkIntArray id{"id", 1, std::vector<std::int32_t>(n)};
+  for (std::size_t i = 0; i < n; ++i) {
+    kind.data[i] = static_cast<std::int32_t>(P.kind[i]);
+    body.data[i] = P.group[i];
+    id.data[i] = static_cast<std::int32_t>(P.id[i]);
+  }
+  const std::string name = fmt::format("particles/step_{:08d}.vtp", s.step_count());
+  io::write_vtp(dir_ / name, P.x, {pressure, io::vector_array("velocity", P.v), density}, {kind, body, id});
+  pvd_.add(s.time(), name);
+  pvd_.write(dir_ / "particles.pvd");
+}
+
+// ---- exact solutions ------------------------------------------------------------------------
+
+namespace {
+/// Channel height and moving-wall speed of a start-up channel case (walls along x).
+void channel_geometry(const Case& c, double& L, double& V0) {
+  L = c.domain_max.y - c.domain_min.y;
+  V0 = 0;
+  for (const auto& w : c.walls) V0 = std::max(V0, std::fabs(w.velocity.x));
+}
+}  // namespace
+
+std::optional<double> exact_vx(const Case& c, Vec2 x, double t) {
+  double L, V0;
+  channel_geometry(c, L, V0);
+  const double y = x.y - c.domain_min.y;
+  switch (c.exact) {
+    case ExactSolution::Couette: return analytic::couette_startup(y, t, L, V0, c.nu);
+    case ExactSolution::Poiseuille: return analytic::poiseuille_startup(y, t, L, c.body_force.x, c.nu);
+    case ExactSolution::None: break;
+  }
+  return std::nullopt;
+}
+
+double exact_peak_speed(const Case& c) {
+  double L, V0;
+  channel_geometry(c, L, V0);
+  if (c.exact == ExactSolution::Poiseuille) return std::fabs(c.body_force.x) * L * L / (8 * c.nu);
+  return V0;
+}
+
+// ---- probes ---------------------------------------------------------------------------------
+
+namespace {
+std::vector<std::string> probe_columns(const Case& c) {
+  std::vector<std::string> cols{"time", "x", "y", "vx", "vy", "p"};
+  if (c.exact != ExactSolution::None) cols.push_back("vx_exact");
+  return cols;
+}
+}  // namespace
+
+ProbeWriter::ProbeWriter(const std::filesystem::path& run_dir, const ProbeSpec& spec, const Case& c)
+    : spec_(spec), case_(c), csv_(run_dir / ("probe_" + spec.name + ".csv"), probe_columns(c)) {
+  for (int k = 0; k < spec.points; ++k) {
+    const double s = spec.points > 1 ? static_cast<double>(k) / (spec.points - 1) : 0.0;
+    points_.push_back(spec.from + s * (spec.to - spec.from));
+  }
+}
+
+void ProbeWriter::write(const Solver& s) {
+  const auto samples = interpolate_at(s.particles(), s.domain(), s.kernel(), points_);
+  double err2 = 0;
+  for (std::size_t k = 0; k < points_.size(); ++k) {
+    std::vector<double> row{s.time(), points_[k].x, points_[k].y, samples[k].v.x, samples[k].v.y, samples[k].p};
+    if (auto ex = exact_vx(case_, points_[k], s.time())) {
+      row.push_back(*ex);
+      err2 += (samples[k].v.x - *ex) * (samples[k].v.x - *ex);
+    }
+    csv_.row(row);
+  }
+  if (case_.exact != ExactSolution::None)
+    last_error_ = std::sqrt(err2 / points_.size()) / exact_peak_speed(case_);
+}
+
+// ---- body history ---------------------------------------------------------------------------
+
+BodyHistoryWriter::BodyHistoryWriter(const std::filesystem::path& run_dir)
+    : csv_(run_dir / "bodies.csv", {"time", "body", "x", "y", "angle", "vx", "vy", "omega", "fx", "fy", "torque",
+                                    "fpx", "fpy", "fvx", "fvy", "fcx", "fcy"}) {}
+
+void BodyHistoryWriter::write(const Solver& s) {
+  const auto& groups = s.groups();
+  for (std::size_t b = 0; b < groups.size(); ++b) {
+    const RigidGroup& g = groups[b];
+    const Vec2 f = g.force_pressure + g.force_viscous;
+    csv_.row({s.time(), static_cast<double>(b), g.pos.x, g.pos.y, g.angle, g.vel.x, g.vel.y, g.omega, f.x, f.y,
+              g.torque, g.force_pressure.x, g.force_pressure.y, g.force_viscous.x, g.force_viscous.y, 0.0, 0.0});
+  }
+}
+
+}  // namespace particula
