@@ -1,0 +1,61 @@
+// Internals of the case module shared between its source files (not a public header).
+#pragma once
+
+#include <toml++/toml.h>
+
+#include <cstddef>
+#include <map>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "particula/case/case.hpp"
+#include "particula/case/error.hpp"
+#include "particula/case/schema.hpp"
+
+namespace particula::case_detail {
+
+/// Name of the pseudo-file that override errors are reported in.
+inline constexpr std::string_view kOverrideSource = "--set";
+
+/// Where the keys of one load came from, so that any error can name a file and line.
+/// Keys are concrete: "fluid.nu", "probe[1].points".
+struct LoadContext {
+  std::string file;                  // the case file as given
+  std::map<std::string, int> lines;  // line of every key and table found in the document
+  std::set<std::string> overridden;  // keys (and their parents) set by --set
+  std::set<std::string> given;       // keys whose value came from the document (not defaults)
+
+  /// A CaseError located at `key`: "--set" for overridden keys, else the key's line, else the
+  /// line of its nearest enclosing table, else 0.
+  CaseError error(const std::string& key, const std::string& message) const;
+};
+
+/// The concrete key of a schema key for element `index` ("wall[].from", 2 -> "wall[2].from").
+std::string concrete_key(const std::string& schema_key, std::size_t index);
+/// The schema form of a concrete key ("wall[2].from" -> "wall[].from").
+std::string schema_form(const std::string& concrete);
+/// Splits "a.b.c" at dots (empty parts kept).
+std::vector<std::string> split_dots(std::string_view s);
+
+/// True if `name` can be a plain (unquoted, dot-free) key component.
+bool plain_component(std::string_view name);
+/// True if some schema key lies below `prefix` + "." (a table section, e.g. "fluid").
+bool is_table_section(std::string_view prefix);
+/// True if some schema key lies below `prefix` + "[]." (an array of tables, e.g. "wall").
+bool is_array_section(std::string_view prefix);
+/// Message for an unknown concrete key, with a suggestion when a schema key is close.
+std::string unknown_key_message(const std::string& concrete);
+
+/// Converts and checks one TOML node against a row. Returns "" and sets `out` on success, or
+/// an error message (wrong type, out of range, not a choice, bad name).
+std::string convert_node(const toml::node& node, const KeySpec& spec, Value& out);
+
+/// Applies --set overrides to the parsed document (see load_case).
+void apply_overrides(toml::table& root, const std::vector<std::string>& overrides, LoadContext& ctx);
+
+/// Consistency checks between keys (domain, walls, periodic width, ...); throw CaseError.
+void run_cross_checks(const Case& c, const LoadContext& ctx);
+
+}  // namespace particula::case_detail

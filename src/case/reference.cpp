@@ -1,0 +1,122 @@
+// The case-file reference (docs/case-files.md), generated from the schema.
+#include <fmt/format.h>
+
+#include "internal.hpp"
+
+namespace particula {
+namespace {
+
+constexpr const char* kHeader = R"(# Case-file reference
+
+This page is generated from the case-file schema (`src/case/schema.cpp`) by
+`particula::case_reference_markdown()`; do not edit it by hand. The test `test_case_schema`
+(CaseDocs.ReferenceIsUpToDate) fails when this file differs from the generated text; run that
+test with `PARTICULA_UPDATE_DOCS=1` in the environment to rewrite it.
+
+A case file is TOML. Rules that hold for every key:
+
+- All quantities are in SI units (column "Unit"; `-` means dimensionless).
+- Unknown keys are errors; the message suggests the nearest known key.
+- A `real` also accepts a TOML integer (`1` reads as `1.0`); an `integer` key rejects a float.
+  `nan` and `inf` are rejected. `vec2` is `[x, y]` of reals, `bool2` is `[x, y]` of booleans.
+- Ranges: `[a, b]` includes its ends, `(a, b)` excludes them.
+- On the command line, `--set key=value` overrides any key before the checks; the value is
+  TOML (`--set fluid.gravity=[0,-9.81]`), and strings and choices also take a bare word
+  (`--set numerics.laplacian=morris`). Members of arrays of tables are addressed by index from
+  0: `--set probe.0.points=81`, `--set wall.1.velocity=[1e-5,0]`.
+- The run directory gets `case.toml`, the fully resolved case (every key, defaults filled in;
+  viscosity written as `fluid.nu`).
+
+A minimal case:
+
+```toml
+name = "channel"
+
+[domain]
+min = [0.0, 0.0]
+max = [1e-3, 1e-3]
+periodic = [true, false]
+
+[resolution]
+d0 = 2.5e-5
+
+[fluid]
+nu = 1e-6
+c = 0.1
+
+[time]
+end = 1.0
+
+[output]
+interval = 0.01
+
+[[wall]]
+from = [1e-3, 0.0]
+to = [0.0, 0.0]
+
+[[wall]]
+from = [0.0, 1e-3]
+to = [1e-3, 1e-3]
+velocity = [-1e-3, 0.0]
+```
+)";
+
+/// Escapes what breaks a markdown table cell ('|') or reads as HTML ('<' outside code spans).
+std::string cell(const std::string& s) {
+  std::string out;
+  bool in_code = false;
+  for (const char ch : s) {
+    if (ch == '`') in_code = !in_code;
+    if (ch == '|' || (ch == '<' && !in_code)) out += '\\';
+    out += ch;
+  }
+  return out;
+}
+
+std::string code(const std::string& s) { return s.empty() ? "" : "`" + s + "`"; }
+
+std::string type_cell(const KeySpec& s) {
+  if (s.type == ValueType::Choice) {
+    std::string list;
+    for (const std::string& c : s.choices) list += (list.empty() ? "" : " \\| ") + code(c);
+    return "choice: " + list;
+  }
+  return type_name(s.type) + (s.identifier ? " (name)" : "");
+}
+
+std::string range_cell(const KeySpec& s) {
+  if (s.identifier) return code("[A-Za-z0-9_-]+") + (s.unique ? ", unique" : "");
+  return code(s.range.text());
+}
+
+std::string default_cell(const KeySpec& s) {
+  if (s.need != Need::Default || !s.default_doc.empty()) return cell(default_text(s));
+  return code(cell(default_text(s)));
+}
+
+std::string section_heading(const SectionSpec& s) {
+  if (s.name.empty()) return "## Top level";
+  return s.array ? fmt::format("## [[{}]] (array of tables)", s.name) : fmt::format("## [{}]", s.name);
+}
+
+/// One markdown table with the rows of a section.
+std::string section_table(const SectionSpec& sec) {
+  std::string out = fmt::format("\n{}\n\n{}\n\n", section_heading(sec), sec.meaning);
+  out += "| Key | Type | Unit | Default | Range | Meaning |\n|---|---|---|---|---|---|\n";
+  for (const KeySpec& s : case_schema()) {
+    if (s.section() != sec.name) continue;
+    out += fmt::format("| {} | {} | {} | {} | {} | {} |\n", code(s.key), type_cell(s), code(s.unit),
+                       default_cell(s), range_cell(s), cell(s.meaning));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string case_reference_markdown() {
+  std::string out = kHeader;
+  for (const SectionSpec& s : case_sections()) out += section_table(s);
+  return out;
+}
+
+}  // namespace particula

@@ -1,0 +1,380 @@
+// The case-file schema: the one table of every key (see include/particula/case/schema.hpp).
+//
+// To add a key, append one row below: its builder names the key, unit, default, range and
+// meaning, and its binding (`field(&Case::x)`, `member(&Case::walls, &WallSpec::x)`) is the
+// assignment into Case. Rows are applied in order, so a row may use fields set by earlier rows
+// (fluid.mu uses fluid.rho0). A new array of tables also needs one row in make_sections().
+#include "particula/case/schema.hpp"
+
+#include <algorithm>
+#include <type_traits>
+#include <utility>
+
+namespace particula {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Defaults.
+
+/// What a row says about being optional: a default value, required, or one of a group.
+struct Def {
+  Need need = Need::Default;
+  Value value;
+  std::string doc;
+  std::string group;
+  std::function<Value(std::size_t)> per_index;
+};
+
+Def required() { return {Need::Required, {}, {}, {}, {}}; }
+Def def(Value v, std::string doc = {}) { return {Need::Default, std::move(v), std::move(doc), {}, {}}; }
+Def one_of(std::string group) { return {Need::OneOf, {}, {}, std::move(group), {}}; }
+/// A default that depends on the element index of an array of tables.
+Def per_index(std::function<Value(std::size_t)> f, std::string doc) {
+  return {Need::Default, f(0), std::move(doc), {}, std::move(f)};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Ranges.
+
+Range any() { return {}; }
+Range gt(real lo) { return {lo, std::nullopt, true, false}; }
+Range ge(real lo) { return {lo, std::nullopt, false, false}; }
+Range closed(real lo, real hi) { return {lo, hi, false, false}; }
+Range open(real lo, real hi) { return {lo, hi, true, true}; }
+Range open_closed(real lo, real hi) { return {lo, hi, true, false}; }
+
+// ---------------------------------------------------------------------------------------------
+// Bindings: how a checked Value is stored into a Case member and read back.
+
+/// Converts a checked Value to the C++ type of a Case member.
+template <class M>
+M from_value(const Value& v) {
+  if constexpr (std::is_same_v<M, bool>) {
+    return std::get<bool>(v);
+  } else if constexpr (std::is_integral_v<M>) {
+    return static_cast<M>(std::get<std::int64_t>(v));  // range-checked by the loader
+  } else {
+    return std::get<M>(v);  // real, std::string, Vec2
+  }
+}
+
+/// Converts a Case member back to a Value.
+template <class M>
+Value to_value(const M& m) {
+  if constexpr (std::is_same_v<M, bool>) {
+    return m;
+  } else if constexpr (std::is_integral_v<M>) {
+    return static_cast<std::int64_t>(m);
+  } else {
+    return m;
+  }
+}
+
+/// A plain member of Case.
+template <class M>
+Binding field(M Case::*m) {
+  return {[m](Case& c, std::size_t, const Value& v) { c.*m = from_value<M>(v); },
+          [m](const Case& c, std::size_t) -> std::optional<Value> { return to_value(c.*m); }};
+}
+
+/// A member of element `index` of an array of tables stored as std::vector<E> in Case.
+template <class E, class M>
+Binding member(std::vector<E> Case::*array, M E::*m) {
+  return {[array, m](Case& c, std::size_t i, const Value& v) { (c.*array).at(i).*m = from_value<M>(v); },
+          [array, m](const Case& c, std::size_t i) -> std::optional<Value> {
+            return to_value((c.*array).at(i).*m);
+          }};
+}
+
+/// An enum member of Case whose enumerators are listed in the same order as `choices`.
+template <class E>
+Binding enum_field(E Case::*m, std::vector<std::string> choices) {
+  return {[m, choices](Case& c, std::size_t, const Value& v) {
+            const auto it = std::find(choices.begin(), choices.end(), std::get<std::string>(v));
+            c.*m = static_cast<E>(it - choices.begin());  // the loader checked membership
+          },
+          [m, choices](const Case& c, std::size_t) -> std::optional<Value> {
+            return choices.at(static_cast<std::size_t>(c.*m));
+          }};
+}
+
+/// A pair of bool members written as one [x, y] key.
+Binding pair_field(bool Case::*x, bool Case::*y) {
+  return {[x, y](Case& c, std::size_t, const Value& v) {
+            c.*x = std::get<Bool2>(v)[0];
+            c.*y = std::get<Bool2>(v)[1];
+          },
+          [x, y](const Case& c, std::size_t) -> std::optional<Value> {
+            return Bool2{c.*x, c.*y};
+          }};
+}
+
+/// fluid.mu: stored as nu = mu / rho0 (fluid.rho0 is applied first) and written back as fluid.nu.
+Binding dynamic_viscosity() {
+  return {[](Case& c, std::size_t, const Value& v) { c.nu = std::get<real>(v) / c.rho0; },
+          [](const Case&, std::size_t) -> std::optional<Value> { return std::nullopt; }};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Row builders, one per value type.
+
+KeySpec row(std::string key, ValueType type, std::string unit, Def d, Range r, std::string meaning,
+            Binding b) {
+  KeySpec s;
+  s.key = std::move(key);
+  s.type = type;
+  s.unit = std::move(unit);
+  s.need = d.need;
+  s.default_value = std::move(d.value);
+  s.default_for = std::move(d.per_index);
+  s.default_doc = std::move(d.doc);
+  s.group = std::move(d.group);
+  s.range = r;
+  s.meaning = std::move(meaning);
+  s.bind = std::move(b);
+  return s;
+}
+
+KeySpec real_key(std::string key, std::string unit, Def d, Range r, std::string meaning, Binding b) {
+  if (const auto* i = std::get_if<std::int64_t>(&d.value)) d.value = static_cast<real>(*i);
+  return row(std::move(key), ValueType::Real, std::move(unit), std::move(d), r, std::move(meaning),
+             std::move(b));
+}
+
+KeySpec int_key(std::string key, Def d, Range r, std::string meaning, Binding b) {
+  return row(std::move(key), ValueType::Int, "-", std::move(d), r, std::move(meaning), std::move(b));
+}
+
+KeySpec bool_key(std::string key, Def d, std::string meaning, Binding b) {
+  return row(std::move(key), ValueType::Bool, "", std::move(d), any(), std::move(meaning), std::move(b));
+}
+
+KeySpec vec2_key(std::string key, std::string unit, Def d, std::string meaning, Binding b) {
+  return row(std::move(key), ValueType::Vec2, std::move(unit), std::move(d), any(), std::move(meaning),
+             std::move(b));
+}
+
+KeySpec bool2_key(std::string key, Def d, std::string meaning, Binding b) {
+  return row(std::move(key), ValueType::Bool2, "", std::move(d), any(), std::move(meaning), std::move(b));
+}
+
+/// A string key; a `name` (identifier) must match [A-Za-z0-9_-]+; `unique` within its array.
+KeySpec string_key(std::string key, Def d, std::string meaning, Binding b, bool name = false,
+                   bool unique = false) {
+  KeySpec s =
+      row(std::move(key), ValueType::String, "", std::move(d), any(), std::move(meaning), std::move(b));
+  s.identifier = name;
+  s.unique = unique;
+  return s;
+}
+
+/// A choice stored in an enum member whose enumerators follow the order of `choices`.
+template <class E>
+KeySpec choice_key(std::string key, std::vector<std::string> choices, Def d, std::string meaning,
+                   E Case::*m) {
+  KeySpec s = row(std::move(key), ValueType::Choice, "", std::move(d), any(), std::move(meaning),
+                  enum_field(m, choices));
+  s.choices = std::move(choices);
+  return s;
+}
+
+Value wall_name(std::size_t k) { return "wall" + std::to_string(k); }
+
+// ---------------------------------------------------------------------------------------------
+// THE TABLE.
+
+std::vector<KeySpec> make_schema() {
+  const Vec2 zero{0, 0};
+  const auto W = &Case::walls;
+  const auto P = &Case::probes;
+  return {
+      // top level
+      string_key("name", required(), "Name of the case; the default run directory is `runs/<name>`.",
+                 field(&Case::name), /*name=*/true),
+      string_key("description", def(std::string{}), "Free text describing the case.",
+                 field(&Case::description)),
+      // [domain]
+      vec2_key("domain.min", "m", required(), "Lower-left corner of the rectangular domain.",
+               field(&Case::domain_min)),
+      vec2_key("domain.max", "m", required(),
+               "Upper-right corner of the domain; must exceed domain.min in both components.",
+               field(&Case::domain_max)),
+      bool2_key("domain.periodic", def(Bool2{false, false}),
+                "Periodicity along x and y; a periodic axis must be at least 3 h long.",
+                pair_field(&Case::periodic_x, &Case::periodic_y)),
+      // [resolution]
+      real_key("resolution.d0", "m", required(), gt(0),
+               "Initial particle spacing; every length that scales with resolution derives from it.",
+               field(&Case::d0)),
+      real_key("resolution.h_over_d0", "-", def(2.6), closed(1.5, 4), "Smoothing length h in units of d0.",
+               field(&Case::h_over_d0)),
+      // [fluid]
+      real_key("fluid.rho0", "kg/m^3", def(1000.0), gt(0), "Reference density of the fluid.",
+               field(&Case::rho0)),
+      real_key("fluid.nu", "m^2/s", one_of("viscosity"), gt(0),
+               "Kinematic viscosity (give this or fluid.mu).", field(&Case::nu)),
+      real_key("fluid.mu", "Pa s", one_of("viscosity"), gt(0),
+               "Dynamic viscosity (give this or fluid.nu); stored as nu = mu / rho0.", dynamic_viscosity()),
+      real_key("fluid.c", "m/s", required(), gt(0), "Artificial speed of sound of the equation of state.",
+               field(&Case::c)),
+      real_key("fluid.p0", "Pa", def(0.0), ge(0), "Background pressure of the equation of state.",
+               field(&Case::p0)),
+      vec2_key("fluid.gravity", "m/s^2", def(zero), "Gravitational acceleration.", field(&Case::gravity)),
+      bool_key("fluid.gravity_in_fluid", def(false),
+               "Whether gravity also acts on the fluid particles (otherwise on bodies only).",
+               field(&Case::gravity_in_fluid)),
+      vec2_key("fluid.body_force", "m/s^2", def(zero),
+               "Uniform acceleration on the fluid only (e.g. to drive Poiseuille flow).",
+               field(&Case::body_force)),
+      // [time]
+      real_key("time.end", "s", required(), gt(0), "Simulated time at which the run stops.",
+               field(&Case::t_end)),
+      real_key("time.cfl", "-", def(0.5), open_closed(0, 1), "Safety factor on the stable time step.",
+               field(&Case::cfl)),
+      real_key("time.dt_max", "s", def(0.0, "0 (no cap)"), ge(0), "Upper bound on the time step.",
+               field(&Case::dt_max)),
+      int_key("time.max_steps", def(std::int64_t{0}, "0 (unlimited)"), ge(0), "Maximum number of steps.",
+              field(&Case::max_steps)),
+      // [numerics]
+      choice_key("numerics.laplacian", {"fatehi_manzari", "morris"}, def(std::string{"fatehi_manzari"}),
+                 "Discretisation of the viscous Laplacian.", &Case::laplacian),
+      choice_key("numerics.boundary", {"single_layer", "dummy"}, def(std::string{"single_layer"}),
+                 "Wall model: one layer of wall particles with solved pressure, or dummy particles.",
+                 &Case::boundary),
+      choice_key("numerics.normals", {"kernel", "analytic"}, def(std::string{"kernel"}),
+                 "Surface normals from kernel sums or from the analytic geometry.", &Case::normals),
+      real_key("numerics.rhie_chow_factor", "-", def(1.0), closed(0, 10),
+               "Scale of the Rhie-Chow pressure stabilisation in the continuity equation.",
+               field(&Case::rhie_chow_factor)),
+      real_key("numerics.shifting_beta", "-", def(0.01), closed(0, 0.2),
+               "Strength of particle shifting, which keeps the particle distribution uniform.",
+               field(&Case::shifting_beta)),
+      int_key("numerics.wall_pressure_sweeps", def(std::int64_t{1}), closed(1, 50),
+              "Sweeps of the single-layer wall pressure update per step.",
+              field(&Case::wall_pressure_sweeps)),
+      // [initial]
+      real_key("initial.perturbation", "-", def(0.05), closed(0, 0.3),
+               "Random perturbation of the initial lattice, as a fraction of d0.",
+               field(&Case::perturbation)),
+      int_key("initial.seed", def(std::int64_t{1}), ge(0), "Seed of the random initial perturbation.",
+              field(&Case::seed)),
+      choice_key("initial.flow", {"rest", "taylor_green"}, def(std::string{"rest"}),
+                 "Initial velocity field: fluid at rest or a Taylor-Green vortex.", &Case::initial_flow),
+      real_key("initial.amplitude", "m/s", def(1.0), gt(0), "Velocity amplitude of the initial flow.",
+               field(&Case::initial_amplitude)),
+      bool_key("initial.hydrostatic", def(false),
+               "Whether to start from the hydrostatic density when gravity acts on the fluid.",
+               field(&Case::hydrostatic)),
+      // [output]
+      real_key("output.interval", "s", required(), gt(0), "Time between outputs (body history rows).",
+               field(&Case::output_interval)),
+      bool_key("output.snapshots", def(true), "Whether to write VTK particle snapshots.",
+               field(&Case::snapshots)),
+      real_key("output.snapshot_interval", "s", def(0.0, "0 (= output.interval)"), ge(0),
+               "Time between VTK snapshots.", field(&Case::snapshot_interval)),
+      real_key("output.checkpoint_interval", "s", def(0.0, "0 (end and interruption only)"), ge(0),
+               "Time between checkpoints.", field(&Case::checkpoint_interval)),
+      // [guard]
+      real_key("guard.rho_min_ratio", "-", def(0.5), open(0, 1),
+               "The run stops when a density falls below this fraction of rho0.",
+               field(&Case::rho_min_ratio)),
+      real_key("guard.rho_max_ratio", "-", def(2.0), gt(1),
+               "The run stops when a density exceeds this multiple of rho0.", field(&Case::rho_max_ratio)),
+      // [[wall]]
+      string_key("wall[].name", per_index(wall_name, "wall<k> (k = index from 0)"),
+                 "Name of the wall in output and messages.", member(W, &WallSpec::name), /*name=*/true),
+      vec2_key("wall[].from", "m", required(),
+               "Start of the segment; the fluid lies on the left walking from `from` to `to`.",
+               member(W, &WallSpec::from)),
+      vec2_key("wall[].to", "m", required(), "End of the segment.", member(W, &WallSpec::to)),
+      vec2_key("wall[].velocity", "m/s", def(zero), "Sliding velocity; must be parallel to to - from.",
+               member(W, &WallSpec::velocity)),
+      // [[probe]]
+      string_key("probe[].name", required(), "Name of the probe; it writes `probe_<name>.csv`.",
+                 member(P, &ProbeSpec::name), /*name=*/true, /*unique=*/true),
+      vec2_key("probe[].from", "m", required(), "First point of the probe line.",
+               member(P, &ProbeSpec::from)),
+      vec2_key("probe[].to", "m", required(), "Last point of the probe line.", member(P, &ProbeSpec::to)),
+      int_key("probe[].points", required(), closed(2, 1e6),
+              "Number of equally spaced points, both ends included.", member(P, &ProbeSpec::points)),
+      real_key("probe[].interval", "s", required(), gt(0), "Time between probe outputs.",
+               member(P, &ProbeSpec::interval)),
+  };
+}
+
+/// An array of tables stored as std::vector<E> in Case.
+template <class E>
+SectionSpec array_section(std::string name, std::vector<E> Case::*m, std::string meaning) {
+  return {std::move(name), true, std::move(meaning), [m](const Case& c) { return (c.*m).size(); },
+          [m](Case& c, std::size_t n) { (c.*m).resize(n); }};
+}
+
+SectionSpec table_section(std::string name, std::string meaning) {
+  return {std::move(name), false, std::move(meaning), {}, {}};
+}
+
+std::vector<SectionSpec> make_sections() {
+  return {
+      table_section("", "Top-level keys."),
+      table_section("domain", "The rectangular computational domain and its periodicity."),
+      table_section("resolution", "Particle spacing and kernel size."),
+      table_section("fluid", "Fluid properties and forces on the fluid."),
+      table_section("time", "Simulated time span and time-step control."),
+      table_section("numerics", "Discretisation schemes and their coefficients."),
+      table_section("initial", "Initial particle arrangement and velocity field."),
+      table_section("output", "What is written to the run directory, and how often."),
+      table_section("guard", "Bounds that stop a run that is blowing up."),
+      array_section("wall", &Case::walls,
+                    "Straight wall segments, one [[wall]] table each; list a closed box counter-clockwise."),
+      array_section("probe", &Case::probes,
+                    "Line probes, one [[probe]] table each: fields interpolated along a segment."),
+  };
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// KeySpec helpers and look-ups.
+
+std::string KeySpec::section() const {
+  const auto dot = key.find('.');
+  if (dot == std::string::npos) return "";
+  std::string s = key.substr(0, dot);
+  if (s.size() >= 2 && s.ends_with("[]")) s.resize(s.size() - 2);
+  return s;
+}
+
+std::string KeySpec::leaf() const {
+  const auto dot = key.rfind('.');
+  return dot == std::string::npos ? key : key.substr(dot + 1);
+}
+
+bool KeySpec::in_array() const { return key.find("[]") != std::string::npos; }
+
+Value KeySpec::default_at(std::size_t index) const {
+  return default_for ? default_for(index) : default_value;
+}
+
+const std::vector<KeySpec>& case_schema() {
+  static const std::vector<KeySpec> schema = make_schema();
+  return schema;
+}
+
+const std::vector<SectionSpec>& case_sections() {
+  static const std::vector<SectionSpec> sections = make_sections();
+  return sections;
+}
+
+const KeySpec* find_key(std::string_view key) {
+  for (const KeySpec& s : case_schema())
+    if (s.key == key) return &s;
+  return nullptr;
+}
+
+const SectionSpec* find_section(std::string_view name) {
+  for (const SectionSpec& s : case_sections())
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+}  // namespace particula

@@ -1,0 +1,143 @@
+// The case-file schema is self-consistent, agrees with the defaults in case.hpp, and
+// docs/case-files.md is exactly the reference generated from it.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "particula/case/load.hpp"
+#include "particula/case/schema.hpp"
+
+using namespace particula;
+
+namespace {
+
+const std::filesystem::path kDocs = std::filesystem::path(PARTICULA_SOURCE_DIR) / "docs" / "case-files.md";
+
+bool numeric(ValueType t) { return t == ValueType::Real || t == ValueType::Int || t == ValueType::Vec2; }
+
+/// The alternative of Value that a key of type `t` holds.
+std::size_t value_index(ValueType t) {
+  switch (t) {
+    case ValueType::Real:
+      return 0;
+    case ValueType::Int:
+      return 1;
+    case ValueType::Bool:
+      return 2;
+    case ValueType::String:
+    case ValueType::Choice:
+      return 3;
+    case ValueType::Vec2:
+      return 4;
+    case ValueType::Bool2:
+      return 5;
+  }
+  return 99;
+}
+
+std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST(CaseSchema, RowsAreWellFormed) {
+  std::set<std::string> keys;
+  for (const KeySpec& s : case_schema()) {
+    SCOPED_TRACE(s.key);
+    EXPECT_TRUE(keys.insert(s.key).second) << "duplicate key";
+    EXPECT_NE(find_section(s.section()), nullptr) << "section not listed in case_sections()";
+    EXPECT_EQ(find_section(s.section())->array, s.in_array());
+    EXPECT_TRUE(s.bind.set && s.bind.get);
+    EXPECT_FALSE(s.meaning.empty());
+    EXPECT_EQ(s.meaning.back(), '.') << "meaning should be one sentence";
+    if (numeric(s.type)) {
+      EXPECT_FALSE(s.unit.empty()) << "numeric keys need a unit";
+    }
+    if (s.type == ValueType::Choice) {
+      EXPECT_GE(s.choices.size(), 2u);
+    }
+    if (s.need == Need::OneOf) {
+      EXPECT_FALSE(s.group.empty());
+    }
+  }
+}
+
+TEST(CaseSchema, DefaultsHaveTheirTypeAndLieInTheirRange) {
+  for (const KeySpec& s : case_schema()) {
+    if (s.need != Need::Default) continue;
+    SCOPED_TRACE(s.key);
+    const Value v = s.default_at(3);
+    ASSERT_EQ(v.index(), value_index(s.type));
+    if (s.type == ValueType::Real) {
+      EXPECT_TRUE(s.range.contains(std::get<real>(v)));
+    }
+    if (s.type == ValueType::Int) {
+      EXPECT_TRUE(s.range.contains(static_cast<real>(std::get<std::int64_t>(v))));
+    }
+    if (s.type == ValueType::Choice) {
+      EXPECT_NE(std::find(s.choices.begin(), s.choices.end(), std::get<std::string>(v)), s.choices.end());
+    }
+  }
+}
+
+TEST(CaseSchema, DefaultsAgreeWithCaseHpp) {
+  // A default-constructed Case (one element per array) holds the schema's defaults.
+  Case fresh;
+  fresh.walls.resize(1);
+  fresh.probes.resize(1);
+  for (const KeySpec& s : case_schema()) {
+    if (s.need != Need::Default || s.default_for) continue;
+    SCOPED_TRACE(s.key);
+    EXPECT_EQ(format_toml_value(*s.bind.get(fresh, 0)), format_toml_value(s.default_value));
+  }
+}
+
+TEST(CaseSchema, ViscosityIsOneOfNuOrMu) {
+  EXPECT_EQ(default_text(*find_key("fluid.nu")), "one of fluid.nu / fluid.mu");
+  EXPECT_EQ(find_key("fluid.mu")->group, find_key("fluid.nu")->group);
+}
+
+TEST(CaseSchema, RangeText) {
+  EXPECT_EQ(find_key("resolution.d0")->range.text(), "> 0");
+  EXPECT_EQ(find_key("resolution.h_over_d0")->range.text(), "[1.5, 4]");
+  EXPECT_EQ(find_key("time.cfl")->range.text(), "(0, 1]");
+  EXPECT_EQ(find_key("guard.rho_min_ratio")->range.text(), "(0, 1)");
+  EXPECT_EQ(find_key("fluid.p0")->range.text(), ">= 0");
+  EXPECT_FALSE(find_key("time.cfl")->range.contains(0));
+  EXPECT_TRUE(find_key("time.cfl")->range.contains(1));
+}
+
+TEST(CaseDocs, ReferenceIsUpToDate) {
+  const std::string generated = case_reference_markdown();
+  if (std::getenv("PARTICULA_UPDATE_DOCS")) {
+    std::ofstream(kDocs, std::ios::binary) << generated;
+    GTEST_SKIP() << "rewrote " << kDocs;
+  }
+  EXPECT_EQ(read_file(kDocs), generated)
+      << kDocs
+      << " differs from case_reference_markdown(); run test_case_schema with PARTICULA_UPDATE_DOCS=1";
+}
+
+TEST(CaseDocs, EveryKeyIsDocumented) {
+  const std::string doc = case_reference_markdown();
+  for (const KeySpec& s : case_schema())
+    EXPECT_NE(doc.find("| `" + s.key + "` |"), std::string::npos) << s.key;
+}
+
+TEST(CaseDocs, MinimalExampleLoads) {
+  const std::string doc = case_reference_markdown();
+  const auto b = doc.find("```toml\n");
+  ASSERT_NE(b, std::string::npos);
+  const auto e = doc.find("```", b + 8);
+  const Case c = load_case_text(doc.substr(b + 8, e - b - 8), "docs/case-files.md");
+  EXPECT_EQ(c.name, "channel");
+  EXPECT_EQ(c.walls.size(), 2u);
+}
