@@ -280,6 +280,12 @@ std::vector<KeySpec> make_schema() {
                field(&Case::rho_min_ratio)),
       real_key("guard.rho_max_ratio", "-", def(2.0), gt(1),
                "The run stops when a density exceeds this multiple of rho0.", field(&Case::rho_max_ratio)),
+      // [validation]
+      choice_key("validation.exact", {"none", "couette", "poiseuille"}, def(std::string{"none"}),
+                 "Exact solution to compare with: probes get a vx_exact column and summary.json the L2 "
+                 "profile error (start-up channel flows along x between walls at domain.min.y and "
+                 "domain.max.y).",
+                 &Case::exact),
       // [[wall]]
       string_key("wall[].name", per_index(wall_name, "wall<k> (k = index from 0)"),
                  "Name of the wall in output and messages.", member(W, &WallSpec::name), /*name=*/true),
@@ -324,6 +330,7 @@ std::vector<SectionSpec> make_sections() {
       table_section("initial", "Initial particle arrangement and velocity field."),
       table_section("output", "What is written to the run directory, and how often."),
       table_section("guard", "Bounds that stop a run that is blowing up."),
+      table_section("validation", "Comparison with an exact solution."),
       array_section("wall", &Case::walls,
                     "Straight wall segments, one [[wall]] table each; list a closed box counter-clockwise."),
       array_section("probe", &Case::probes,
