@@ -1,0 +1,136 @@
+// JSON writer and number lookup.
+#include "particula/io/json.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace particula::io {
+namespace {
+
+/// A double as JSON: shortest round-trip text, null when not finite.
+std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "null"; }
+
+/// Appends a newline plus indentation for `depth` levels (nothing on one line).
+void line_break(std::string& out, int indent, int depth) {
+  if (indent <= 0) return;
+  out += '\n';
+  out.append(static_cast<std::size_t>(indent * depth), ' ');
+}
+
+}  // namespace
+
+JsonObject& JsonObject::put(std::string_view key, Value value) {
+  for (auto& [k, v] : entries_) {
+    if (k == key) {
+      v = std::move(value);
+      return *this;
+    }
+  }
+  entries_.emplace_back(std::string(key), std::move(value));
+  return *this;
+}
+
+bool JsonObject::contains(std::string_view key) const {
+  for (const auto& e : entries_)
+    if (e.first == key) return true;
+  return false;
+}
+
+void JsonObject::dump_to(std::string& out, int indent, int depth) const {
+  if (entries_.empty()) {
+    out += "{}";
+    return;
+  }
+  out += '{';
+  for (std::size_t i = 0; i < entries_.size(); ++i) {
+    if (i > 0) out += ',';
+    line_break(out, indent, depth + 1);
+    out += json_escape(entries_[i].first);
+    out += ": ";
+    const Value& v = entries_[i].second;
+    if (const auto* d = std::get_if<double>(&v))
+      out += json_number(*d);
+    else if (const auto* n = std::get_if<std::int64_t>(&v))
+      out += fmt::format("{}", *n);
+    else if (const auto* b = std::get_if<bool>(&v))
+      out += *b ? "true" : "false";
+    else if (const auto* s = std::get_if<std::string>(&v))
+      out += json_escape(*s);
+    else if (const auto* a = std::get_if<std::vector<double>>(&v)) {
+      out += '[';
+      for (std::size_t j = 0; j < a->size(); ++j) {
+        if (j > 0) out += ", ";
+        out += json_number((*a)[j]);
+      }
+      out += ']';
+    } else {
+      std::get<std::shared_ptr<const JsonObject>>(v)->dump_to(out, indent, depth + 1);
+    }
+  }
+  line_break(out, indent, depth);
+  out += '}';
+}
+
+std::string JsonObject::dump(int indent) const {
+  std::string out;
+  dump_to(out, indent, 0);
+  return out;
+}
+
+std::string json_escape(std::string_view s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\b':
+        out += "\\b";
+        break;
+      case '\f':
+        out += "\\f";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20)
+          out += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
+        else
+          out += c;  // UTF-8 bytes pass through unchanged
+    }
+  }
+  out += '"';
+  return out;
+}
+
+double json_number_field(const std::string& text, const std::string& key) {
+  const std::string quoted = json_escape(key);
+  for (std::size_t at = text.find(quoted); at != std::string::npos; at = text.find(quoted, at + 1)) {
+    std::size_t i = text.find_first_not_of(" \t\r\n", at + quoted.size());
+    if (i == std::string::npos || text[i] != ':') continue;  // a string value, not a key
+    i = text.find_first_not_of(" \t\r\n", i + 1);
+    if (i == std::string::npos) break;
+    if (text.compare(i, 4, "null") == 0) return std::numeric_limits<double>::quiet_NaN();
+    double v = 0;
+    const auto [end, ec] = std::from_chars(text.data() + i, text.data() + text.size(), v);
+    if (ec != std::errc()) throw std::runtime_error("JSON field '" + key + "' is not a number");
+    return v;
+  }
+  throw std::runtime_error("JSON has no field '" + key + "'");
+}
+
+}  // namespace particula::io
