@@ -107,7 +107,7 @@ ProgressLine::ProgressLine(RunLog* log, ProgressOptions options) : log_(log), op
 
 ProgressLine::~ProgressLine() {
   if (log_ && terminal_ && !opt_.quiet) log_->set_before_echo({});
-  if (live_open_) end_live_line();
+  end_live_line();
 }
 
 double ProgressLine::now() const { return opt_.clock ? opt_.clock() : steady_seconds(); }
@@ -148,10 +148,11 @@ void ProgressLine::finish() {
   const std::string text = format_progress(last_, eta(last_, now()));
   if (!opt_.quiet) print(text);
   if (log_) log_->record(text);
-  if (live_open_) end_live_line();
+  end_live_line();
 }
 
 void ProgressLine::print(const std::string& text) {
+  std::lock_guard lock(print_mutex_);
   if (!terminal_) {
     fmt::print(opt_.out, "{}\n", text);
   } else {
@@ -165,6 +166,7 @@ void ProgressLine::print(const std::string& text) {
 }
 
 void ProgressLine::end_live_line() {
+  std::lock_guard lock(print_mutex_);
   if (!live_open_) return;
   fmt::print(opt_.out, "\n");
   std::fflush(opt_.out);

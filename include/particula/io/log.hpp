@@ -77,7 +77,9 @@ std::string format_duration(double seconds);
 /// Prints progress: on a terminal, one live line rewritten with '\r' at most every
 /// live_interval_s; otherwise a plain line every plain_interval_s. Every plain_interval_s the
 /// text also goes to the RunLog (file only). The ETA uses the rate of simulated time since the
-/// first update. Not copyable or movable (the log holds a hook to it).
+/// first update. Call update()/finish() from one thread; the RunLog may echo warnings from
+/// any thread (the live line is ended first, under a lock). Not copyable or movable (the log
+/// holds a hook to it).
 class ProgressLine {
  public:
   explicit ProgressLine(RunLog* log = nullptr, ProgressOptions options = {});
@@ -104,6 +106,7 @@ class ProgressLine {
   double start_wall_ = 0, start_t_ = 0;
   double last_print_ = -1e300, last_log_ = -1e300;
   std::size_t live_width_ = 0;
+  std::mutex print_mutex_;  ///< guards the printed state; never held while calling the log
 };
 
 }  // namespace particula::io

@@ -39,7 +39,7 @@ VtkArray vector_array(std::string name, const std::vector<Vec2>& v);
 void write_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points,
                const std::vector<VtkArray>& arrays, const std::vector<VtkIntArray>& int_arrays = {});
 
-/// The content of a .vtp file as write_vtp wrote it.
+/// The content of a .vtp file.
 struct VtpData {
   std::filesystem::path source;
   std::size_t num_points = 0;
@@ -53,8 +53,10 @@ struct VtpData {
   const VtkIntArray& int_array(std::string_view name) const;
 };
 
-/// Reads a .vtp file written by write_vtp (binary inline, UInt64 headers, one piece).
-/// Throws IoError naming the file on any unreadable, truncated or malformed input.
+/// Reads a .vtp file written by write_vtp, or by VTK/ParaView in the same form (one piece,
+/// binary inline uncompressed, UInt64 headers, Float64 points, Float64/Int32 point arrays;
+/// arrays of other sections are checked and ignored). Throws IoError naming the file on any
+/// unreadable, truncated, malformed or unsupported input.
 VtpData read_vtp(const std::filesystem::path& path);
 
 /// The ParaView time series index (.pvd): one entry per snapshot.
