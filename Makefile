@@ -14,6 +14,7 @@ build: deps
 
 demo: build
 	./build/release/particula run cases/couette.toml --out runs/demo --overwrite
+	@echo "demo: see runs/demo/plots/ and runs/demo/summary.json"
 
 test: build
 	ctest --preset release -j $(JOBS)

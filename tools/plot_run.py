@@ -61,7 +61,12 @@ def read_vtp(path):
 
 def plot_probe(run, name, out):
     cols = read_csv(os.path.join(run, "probe_%s.csv" % name))
-    times = sorted(set(cols["time"]))
+    all_times = sorted(set(cols["time"]))
+    # at most 8 profiles, evenly spread over the run, the last included
+    step = max(1, int(math.ceil((len(all_times) - 1) / 7.0)))
+    times = all_times[::step]
+    if times[-1] != all_times[-1]:
+        times.append(all_times[-1])
     has_exact = "vx_exact" in cols
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     cmap = plt.get_cmap("viridis")
@@ -71,7 +76,7 @@ def plot_probe(run, name, out):
         y = [cols["y"][i] for i in idx]
         vx = [cols["vx"][i] for i in idx]
         color = cmap(k / max(1, len(times) - 1))
-        ax.plot(vx, y, "o", ms=3, color=color, label="SPH t = %.3g s" % t if k in (0, len(times) - 1) else None)
+        ax.plot(vx, y, "o", ms=3, color=color, label="SPH t = %.3g s" % t)
         if has_exact:
             ex = [cols["vx_exact"][i] for i in idx]
             ax.plot(ex, y, "-", lw=1, color=color, label="exact" if k == len(times) - 1 else None)

@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   run->add_option("--threads", run_opt.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 4096));
   run->add_option("--backend", backend, "Compute backend")->check(CLI::IsMember({"cpu"}));
   run->add_flag("--quiet", run_opt.quiet, "No progress line");
+  bool no_plots = false;
+  run->add_flag("--no-plots", no_plots, "Do not draw plots at the end of the run");
   run->add_flag("--overwrite", run_opt.overwrite, "Replace an existing run directory");
 
   std::string info_case;
@@ -36,6 +38,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
   try {
+    run_opt.plots = !no_plots;
     if (*run) return particula::run_command(run_case, run_opt);
     if (*info) return particula::info_command(info_case, info_overrides);
   } catch (const std::exception& e) {

@@ -241,8 +241,11 @@ std::vector<KeySpec> make_schema() {
       choice_key("numerics.boundary", {"single_layer", "dummy"}, def(std::string{"single_layer"}),
                  "Wall model: one layer of wall particles with solved pressure, or dummy particles.",
                  &Case::boundary),
-      choice_key("numerics.normals", {"kernel", "analytic"}, def(std::string{"kernel"}),
-                 "Surface normals from kernel sums or from the analytic geometry.", &Case::normals),
+      choice_key("numerics.normals", {"kernel", "analytic"}, def(std::string{"analytic"}),
+                 "Surface normals in the wall pressure (P.20) and forces: the exact normals of the geometry, "
+                 "or the kernel sums of P.18 (noisy by a few degrees on a perturbed lattice; see "
+                 "docs/method-notes.md).",
+                 &Case::normals),
       real_key("numerics.rhie_chow_factor", "-", def(1.0), closed(0, 10),
                "Scale of the Rhie-Chow pressure stabilisation in the continuity equation.",
                field(&Case::rhie_chow_factor)),

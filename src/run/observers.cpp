@@ -55,6 +55,19 @@ std::optional<double> exact_vx(const Case& c, Vec2 x, double t) {
   return std::nullopt;
 }
 
+std::optional<double> particle_profile_error(const Solver& s, const Case& c) {
+  if (c.exact == ExactSolution::None) return std::nullopt;
+  const Particles& P = s.particles();
+  double err2 = 0;
+  std::size_t n = 0;
+  for (std::size_t i = P.n_boundary; i < P.size(); ++i) {
+    const double e = P.v[i].x - *exact_vx(c, P.x[i], s.time());
+    err2 += e * e;
+    ++n;
+  }
+  return n ? std::optional<double>(std::sqrt(err2 / n) / exact_peak_speed(c)) : std::nullopt;
+}
+
 double exact_peak_speed(const Case& c) {
   double L, V0;
   channel_geometry(c, L, V0);

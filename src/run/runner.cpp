@@ -6,6 +6,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <fmt/format.h>
 
 #include "particula/case/load.hpp"
@@ -63,9 +64,33 @@ struct Outputs {
   std::unique_ptr<SnapshotWriter> snapshots;
   std::vector<std::unique_ptr<ProbeWriter>> probes;
   std::unique_ptr<BodyHistoryWriter> bodies;
-  real next_output = 0, next_snapshot = 0, next_probe_check = 0;
+  real next_output = 0, next_snapshot = 0;
   std::vector<real> next_probe;
+  // time of the last write of each stream (bodies, snapshots, probes...), so that the final
+  // state is written once at the end of a run
+  real last_bodies = -1, last_snapshot = -1;
+  std::vector<real> last_probe;
 };
+
+/// Runs tools/plot_run.py on the run directory when Debian's matplotlib is available, and says
+/// so when it is not (plots are optional; the data files are complete without them).
+template <class Say>
+void draw_plots(const std::filesystem::path& dir, bool quiet, Say&& say) {
+  const std::filesystem::path script = std::filesystem::path(PARTICULA_SOURCE_DIR) / "tools" / "plot_run.py";
+  const char* python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const std::string probe = fmt::format("{} -c 'import matplotlib' >/dev/null 2>&1", python);
+  if (!std::filesystem::exists(script) || std::system(probe.c_str()) != 0) {
+    say("note: no plots drawn (python3-matplotlib is not installed; scripts/install-deps installs it)");
+    return;
+  }
+  const std::string cmd = fmt::format("{} '{}' '{}' >> '{}' 2>&1", python, script.string(), dir.string(),
+                                      (dir / "log.txt").string());
+  if (std::system(cmd.c_str()) == 0) {
+    if (!quiet) say(fmt::format("plots in {}", (dir / "plots").string()));
+  } else {
+    say("warning: plotting failed (see log.txt); the data files are complete");
+  }
+}
 
 }  // namespace
 
@@ -105,20 +130,25 @@ int run_command(const std::filesystem::path& case_file, const RunOptions& opt) {
   out.bodies = std::make_unique<BodyHistoryWriter>(dir);
 
   const real eps = 1e-9 * c.t_end;
+  // Writes every stream that is due (or, with `force`, every stream not yet written at this time).
   auto write_outputs = [&](bool force) {
     const real t = solver.time();
-    if (force || t >= out.next_output - eps) {
+    if ((force && out.last_bodies < t) || t >= out.next_output - eps) {
       out.bodies->write(solver);
+      out.last_bodies = t;
       out.next_output = next_stop(t, 1e300, c.output_interval);
     }
-    if (out.snapshots && (force || t >= out.next_snapshot - eps)) {
+    if (out.snapshots && ((force && out.last_snapshot < t) || t >= out.next_snapshot - eps)) {
       out.snapshots->write(solver);
+      out.last_snapshot = t;
       out.next_snapshot = next_stop(t, 1e300, snap_interval);
     }
     out.next_probe.resize(out.probes.size(), 0);
+    out.last_probe.resize(out.probes.size(), -1);
     for (std::size_t k = 0; k < out.probes.size(); ++k)
-      if (force || t >= out.next_probe[k] - eps) {
+      if ((force && out.last_probe[k] < t) || t >= out.next_probe[k] - eps) {
         out.probes[k]->write(solver);
+        out.last_probe[k] = t;
         out.next_probe[k] = next_stop(t, 1e300, out.probes[k]->spec().interval);
       }
   };
@@ -168,7 +198,7 @@ int run_command(const std::filesystem::path& case_file, const RunOptions& opt) {
                     wall > 0 ? particle_steps / wall : 0);
   }
   progress.finish();
-  if (exit_code == 130 && out.snapshots) out.snapshots->write(solver);
+  if (exit_code != 3) write_outputs(true);  // the final state (a failure already wrote it)
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
   const auto& cnt = solver.counters();
@@ -190,7 +220,9 @@ int run_command(const std::filesystem::path& case_file, const RunOptions& opt) {
   guards.set("normal_fallback", cnt.normal_fallback);
   summary.set("guard_events", guards);
   for (const auto& p : out.probes)
-    if (auto e = p->last_error()) summary.set("profile_error_" + p->spec().name, *e);
+    if (auto e = p->last_error()) summary.set("probe_error_" + p->spec().name, *e);
+  const auto particle_error = particle_profile_error(solver, c);
+  if (particle_error) summary.set("profile_error", *particle_error);
   io::write_file_atomic(dir / "summary.json", summary.dump());
 
   say(fmt::format("{}: t = {:.6g} s after {} steps in {:.2f} s ({:.3g} particle-steps/s on {} threads)", status,
@@ -198,10 +230,14 @@ int run_command(const std::filesystem::path& case_file, const RunOptions& opt) {
                   omp_get_max_threads()));
   say(fmt::format("guard events: singular B {}, singular Bhat {}, wall pressure kept {}, normal fallback {}",
                   cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.normal_fallback));
+  if (particle_error)
+    say(fmt::format("L2 error of the fluid particles' vx against the exact solution: {:.4f} % of the peak speed",
+                    100 * *particle_error));
   for (const auto& p : out.probes)
     if (auto e = p->last_error())
-      say(fmt::format("probe '{}': L2 error of vx against the exact solution {:.4f} % of the peak speed at t = {:.6g} s",
+      say(fmt::format("probe '{}' (Shepard-interpolated): L2 error of vx {:.4f} % of the peak speed at t = {:.6g} s",
                       p->spec().name, 100 * *e, solver.time()));
+  if (exit_code == 0 && opt.plots) draw_plots(dir, opt.quiet, say);
   say(fmt::format("results in {}", dir.string()));
   return exit_code;
 }

@@ -67,7 +67,7 @@ struct Case {
   // [numerics]
   LaplacianScheme laplacian = LaplacianScheme::FatehiManzari;
   BoundaryModel boundary = BoundaryModel::SingleLayer;
-  NormalModel normals = NormalModel::Kernel;
+  NormalModel normals = NormalModel::Analytic;  // P.18 is selectable; see docs/method-notes.md
   real rhie_chow_factor = 1;
   real shifting_beta = 0.01;
   int wall_pressure_sweeps = 1;

@@ -55,6 +55,9 @@ class BodyHistoryWriter {
 
 /// The exact solution the case declares, evaluated at (y, t); nullopt when it has none.
 std::optional<double> exact_vx(const Case& c, Vec2 x, double t);
+/// L2 error of vx over all fluid particles (at their own positions) against the exact
+/// solution, relative to the peak speed; nullopt without an exact solution.
+std::optional<double> particle_profile_error(const Solver& s, const Case& c);
 /// Peak speed used to normalize profile errors.
 double exact_peak_speed(const Case& c);
 

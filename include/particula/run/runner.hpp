@@ -14,6 +14,7 @@ struct RunOptions {
   std::filesystem::path out_dir;  // empty: runs/<case name>
   bool overwrite = false;
   bool quiet = false;
+  bool plots = true;  // draw plots at the end (tools/plot_run.py) when matplotlib is present
   int threads = 0;  // 0: OpenMP default
   std::vector<std::string> overrides;
 };
