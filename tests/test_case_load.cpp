@@ -114,7 +114,7 @@ TEST(CaseLoad, MinimalCaseGetsDefaults) {
   EXPECT_EQ(c.max_steps, 0);
   EXPECT_EQ(c.laplacian, LaplacianScheme::FatehiManzari);
   EXPECT_EQ(c.boundary, BoundaryModel::SingleLayer);
-  EXPECT_EQ(c.normals, NormalModel::Kernel);
+  EXPECT_EQ(c.normals, NormalModel::Analytic);
   EXPECT_EQ(c.rhie_chow_factor, 1.0);
   EXPECT_EQ(c.shifting_beta, 0.01);
   EXPECT_EQ(c.wall_pressure_sweeps, 1);
