@@ -11,9 +11,12 @@
 
 namespace particula {
 
-Solver::Solver(PhysicsParams params, Domain domain, Particles particles, std::vector<RigidGroup> groups)
-    : prm_(params), domain_(domain), P_(std::move(particles)), groups_(std::move(groups)), kernel_(params.h) {
+Solver::Solver(PhysicsParams params, Domain domain, Particles particles, std::vector<RigidGroup> groups,
+               SolverStart start, real t0, std::int64_t step0)
+    : prm_(params), domain_(domain), P_(std::move(particles)), groups_(std::move(groups)), kernel_(params.h),
+      t_(t0), steps_(step0) {
   grid_.setup(domain_, prm_.h);
+  if (start == SolverStart::Restart) return;  // the checkpoint holds positions, pressures, everything
   place_boundary(t_);
   refresh_geometry();
   // Initial wall pressure consistent with the initial fluid state (P.20): iterate the Jacobi

@@ -49,9 +49,15 @@ struct Failure {
   Vec2 position;
 };
 
+/// How a solver starts: from a freshly built scene (boundary pressures are initialized from
+/// P.20) or from a checkpointed state (taken exactly as it is, so a resumed run is bitwise
+/// identical to an uninterrupted one).
+enum class SolverStart { Fresh, Restart };
+
 class Solver {
  public:
-  Solver(PhysicsParams params, Domain domain, Particles particles, std::vector<RigidGroup> groups);
+  Solver(PhysicsParams params, Domain domain, Particles particles, std::vector<RigidGroup> groups,
+         SolverStart start = SolverStart::Fresh, real t0 = 0, std::int64_t step0 = 0);
 
   /// Advances one full time step of at most `dt_cap` (used to land on output and end times).
   /// Returns the failure, if any, detected at its end.
@@ -72,8 +78,8 @@ class Solver {
   /// Time step of P.29-P.31 for the current state (rebuilds nothing: uses the last list).
   real stable_dt() const;
 
-  /// Restores time and step counter (checkpoints).
-  void set_clock(real t, std::int64_t steps) { t_ = t; steps_ = steps; }
+  /// Guard counters (checkpoints carry them so a resumed run reports totals).
+  void set_counters(const SolverCounters& c) { counters_ = c; }
 
   /// Rebuilds neighbours and position-only quantities for the current positions (used before
   /// output and by tests of the operators).
