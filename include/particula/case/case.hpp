@@ -36,6 +36,33 @@ struct ProbeSpec {
   real interval = 0;
 };
 
+enum class BodyShape { Circle, Ellipse, Polygon, HalfDisc };
+enum class BodyMotion { Free, Fixed, Prescribed };
+
+/// One knot of a prescribed piecewise-linear motion: velocity and angular velocity at time t.
+struct MotionKnot {
+  real t = 0;
+  Vec2 velocity;
+  real omega = 0;
+};
+
+/// A rigid body. Its position is its area centroid; `angle` (rad, counter-clockwise) rotates
+/// the body frame to the world frame.
+struct BodySpec {
+  std::string name;
+  BodyShape shape = BodyShape::Circle;
+  Vec2 center;                 // circle, ellipse: centroid; half_disc: centre of the full disc
+  real radius = 0;             // circle, half_disc
+  Vec2 semi_axes;              // ellipse: (a along the body x axis, b along the body y axis)
+  std::vector<Vec2> vertices;  // polygon: vertices in world coordinates at t = 0 (angle applies about the centroid)
+  real angle = 0;
+  real density = 0;            // kg/m^3 (free bodies)
+  BodyMotion motion = BodyMotion::Free;
+  Vec2 velocity;               // initial velocity (free) or constant prescribed velocity
+  real omega = 0;              // initial / constant prescribed angular velocity (rad/s)
+  std::vector<MotionKnot> schedule;  // prescribed: piecewise-linear in time (overrides velocity/omega)
+};
+
 struct Case {
   std::string name;
   std::string description;
@@ -92,8 +119,13 @@ struct Case {
   // [validation]
   ExactSolution exact = ExactSolution::None;
 
+  // [collision] (P.38 generalized)
+  real collision_stiffness = 0;  // k; 0 disables the repulsive force
+  real collision_range = 0;      // eps in m; 0 = 3 d0
+
   std::vector<WallSpec> walls;
   std::vector<ProbeSpec> probes;
+  std::vector<BodySpec> bodies;
 
   real h() const { return h_over_d0 * d0; }
   real mu() const { return nu * rho0; }

@@ -1,0 +1,64 @@
+// Rigid-body shapes in their body frame: signed distance, exact area and polar moment,
+// and surface sampling at spacing ~d0 with the exact surface length per particle.
+// The body frame's origin is the area centroid; `angle` rotates body to world frame.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "particula/core/types.hpp"
+
+namespace particula {
+
+enum class ShapeKind { Circle, Ellipse, Polygon, HalfDisc };
+
+/// One sampled surface point in the body frame.
+struct SurfaceSample {
+  Vec2 x;       // position (body frame)
+  Vec2 normal;  // outward unit normal (from the solid into the fluid)
+  real ds;      // surface length it represents
+};
+
+class Shape {
+ public:
+  static Shape circle(real radius);
+  /// Semi-axes a (along body x) and b (along body y).
+  static Shape ellipse(real a, real b);
+  /// Polygon from vertices (any orientation, convex or not, not self-intersecting). The
+  /// vertices are shifted so that the area centroid is the origin; `centroid_offset()` returns
+  /// where the centroid was in the given coordinates.
+  static Shape polygon(std::vector<Vec2> vertices);
+  /// Half of a disc of radius R: the half with x >= 0 (flat side along the body y axis through
+  /// the disc centre). The body frame origin is the centroid (4R/3pi from the flat side).
+  static Shape half_disc(real radius);
+
+  ShapeKind kind() const { return kind_; }
+  real area() const { return area_; }
+  /// Polar second moment of area about the centroid (moment of inertia = density * this).
+  real polar_moment() const { return polar_; }
+  /// Radius of the disc with the same area (used by the collision model).
+  real equivalent_radius() const;
+  /// Largest distance from the centroid to the surface.
+  real bounding_radius() const { return bound_; }
+  Vec2 centroid_offset() const { return centroid_offset_; }
+  /// Smallest dimension across the body (diameter, minor axis, ...), for resolution checks.
+  real min_width() const { return min_width_; }
+
+  /// Signed distance in the body frame: negative inside the solid.
+  real signed_distance(Vec2 p) const;
+  /// Outward normal of the surface point closest to p (body frame).
+  Vec2 closest_normal(Vec2 p) const;
+  /// Surface samples at spacing about d0 (body frame), with exact dS summing to the perimeter.
+  std::vector<SurfaceSample> sample_surface(real d0) const;
+  real perimeter() const;
+
+ private:
+  ShapeKind kind_ = ShapeKind::Circle;
+  real a_ = 0, b_ = 0;  // radius / semi-axes
+  std::vector<Vec2> verts_;
+  real area_ = 0, polar_ = 0, bound_ = 0, min_width_ = 0;
+  Vec2 centroid_offset_;
+  Vec2 closest_point(Vec2 p) const;
+};
+
+}  // namespace particula
