@@ -1,11 +1,17 @@
 #include "particula/scene/scene.hpp"
 
 #include <cmath>
+#include <limits>
+
+#include "particula/bodies/rigid_motion.hpp"
 #include <stdexcept>
 
 #include "particula/fluid/fluid.hpp"
 
 namespace particula {
+
+Shape body_shape(const BodySpec& b);
+Vec2 body_position(const BodySpec& b, const Shape& s);
 
 PhysicsParams physics_params(const Case& c) {
   PhysicsParams p;
@@ -28,7 +34,36 @@ PhysicsParams physics_params(const Case& c) {
   p.wall_pressure_sweeps = c.wall_pressure_sweeps;
   p.rho_min_ratio = c.rho_min_ratio;
   p.rho_max_ratio = c.rho_max_ratio;
+  p.collision_stiffness = c.collision_stiffness;
+  p.collision_range = c.collision_range;
+  for (const auto& w : c.walls) {
+    const Vec2 t = (w.to - w.from) / norm(w.to - w.from);
+    p.walls.push_back({w.from, w.to, {-t.y, t.x}});
+  }
+  for (const auto& b : c.bodies) {
+    BodyParams bp{b.name, body_shape(b), {}, b.motion, b.velocity, b.omega, b.schedule};
+    bp.samples = bp.shape.sample_surface(c.d0);
+    p.bodies.push_back(std::move(bp));
+  }
   return p;
+}
+
+Shape body_shape(const BodySpec& b) {
+  switch (b.shape) {
+    case BodyShape::Circle: return Shape::circle(b.radius);
+    case BodyShape::Ellipse: return Shape::ellipse(b.semi_axes.x, b.semi_axes.y);
+    case BodyShape::Polygon: return Shape::polygon(b.vertices);
+    case BodyShape::HalfDisc: return Shape::half_disc(b.radius);
+  }
+  return Shape::circle(b.radius);
+}
+
+Vec2 body_position(const BodySpec& b, const Shape& s) {
+  switch (b.shape) {
+    case BodyShape::Polygon: return s.centroid_offset();
+    case BodyShape::HalfDisc: return b.center + rotate(s.centroid_offset(), std::cos(b.angle), std::sin(b.angle));
+    default: return b.center;
+  }
 }
 
 namespace {
@@ -131,6 +166,19 @@ real corner_volume_factor(const SurfacePoint& sp, const WallSpec& ws) {
   return std::fmax(1.0, 2 * solid_angle / M_PI - 1);
 }
 
+/// Signed distance from x to the nearest body (world frame), +inf without bodies.
+real body_distance(Vec2 x, const PhysicsParams& prm, const std::vector<Vec2>& pos, const std::vector<real>& angle,
+                   const Domain& dom) {
+  real d = std::numeric_limits<real>::infinity();
+  for (std::size_t k = 0; k < prm.bodies.size(); ++k) {
+    const Vec2 rel = dom.separation(x, pos[k]);
+    if (norm(rel) > prm.bodies[k].shape.bounding_radius() + d) continue;
+    const Vec2 local = rotate(rel, std::cos(angle[k]), -std::sin(angle[k]));
+    d = std::min(d, prm.bodies[k].shape.signed_distance(local));
+  }
+  return d;
+}
+
 }  // namespace
 
 Scene build_scene(const Case& c) {
@@ -141,9 +189,16 @@ Scene build_scene(const Case& c) {
   Particles& P = sc.particles;
   const real d0 = c.d0;
   const int dummy_layers = static_cast<int>(std::ceil(c.h_over_d0 - 1e-9));
+  std::vector<Vec2> body_pos;
+  std::vector<real> body_angle;
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    body_pos.push_back(body_position(c.bodies[k], sc.params.bodies[k].shape));
+    body_angle.push_back(c.bodies[k].angle);
+  }
+  auto near_body = [&](Vec2 x) { return body_distance(x, sc.params, body_pos, body_angle, dom) < 0.5 * d0 * (1 - 1e-9); };
 
   // ---- boundary block: one rigid group per wall, surface particles then its dummies
-  std::vector<Vec2> bx, bn;
+  std::vector<Vec2> bx, bn, blocal;
   std::vector<real> bds, bvol;
   std::vector<Kind> bk;
   std::vector<std::int32_t> bsrc, bgroup;
@@ -155,10 +210,13 @@ Scene build_scene(const Case& c) {
     g.motion = norm(ws.velocity) > 0 ? Motion::Prescribed : Motion::Fixed;
     g.vel = ws.velocity;
     g.first = bx.size();
-    const auto surf = sample_wall(c, dom, w);
+    auto surf = sample_wall(c, dom, w);
+    // Wall stretches covered by a body (an obstacle sitting on the wall) are not wall surface.
+    std::erase_if(surf, [&](const SurfacePoint& sp) { return near_body(sp.x); });
     const std::size_t first_surface = bx.size();
     for (const auto& sp : surf) {
       bx.push_back(sp.x);
+      blocal.push_back(sp.x);  // walls: body frame = world frame (the group starts at the origin)
       bn.push_back(sp.normal);
       bds.push_back(sp.ds);
       bvol.push_back(sp.ds * d0 * (sp.corner ? corner_volume_factor(sp, ws) : 1.0));
@@ -169,6 +227,7 @@ Scene build_scene(const Case& c) {
     if (c.boundary == BoundaryModel::Dummy) {
       for (const auto& [x, s] : dummy_points(surf, ws, d0, dummy_layers)) {
         bx.push_back(x);
+        blocal.push_back(x);
         bn.push_back(surf[s].normal);
         bds.push_back(0);
         bvol.push_back(d0 * d0);
@@ -176,6 +235,68 @@ Scene build_scene(const Case& c) {
         bsrc.push_back(static_cast<std::int32_t>(first_surface + s));
         bgroup.push_back(static_cast<std::int32_t>(w));
       }
+    }
+    g.count = bx.size() - g.first;
+    sc.groups.push_back(g);
+  }
+
+  // ---- bodies: one rigid group each, surface particles (body frame) then dummies
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    const BodySpec& bs = c.bodies[k];
+    const BodyParams& bp = sc.params.bodies[k];
+    RigidGroup g;
+    g.name = bs.name;
+    g.is_wall = false;
+    g.body = static_cast<int>(k);
+    g.motion = bs.motion == BodyMotion::Free ? Motion::Free
+               : bs.motion == BodyMotion::Fixed ? Motion::Fixed : Motion::Prescribed;
+    g.pos = g.pos0 = body_pos[k];
+    g.angle = g.angle0 = bs.angle;
+    if (g.motion == Motion::Free) {
+      g.vel = bs.velocity;
+      g.omega = bs.omega;
+    } else if (g.motion == Motion::Prescribed) {
+      const auto st = prescribed_state(bs.schedule, bs.velocity, bs.omega, 0.0);
+      g.vel = st.vel;
+      g.omega = st.omega;
+      g.acc = st.acc;
+      g.alpha = st.alpha;
+    }
+    g.area = bp.shape.area();
+    g.mass = bs.density * g.area;
+    g.inertia = bs.density * bp.shape.polar_moment();
+    g.first = bx.size();
+    const real cth = std::cos(bs.angle), sth = std::sin(bs.angle);
+    for (const auto& smp : bp.samples) {
+      bx.push_back(g.pos + rotate(smp.x, cth, sth));
+      blocal.push_back(smp.x);
+      bn.push_back(smp.normal);
+      bds.push_back(smp.ds);
+      bvol.push_back(smp.ds * d0);
+      bk.push_back(Kind::Boundary);
+      bsrc.push_back(-1);
+      bgroup.push_back(static_cast<std::int32_t>(sc.groups.size()));
+    }
+    if (c.boundary == BoundaryModel::Dummy) {
+      // Dummy particles on a body-frame lattice inside the solid, up to ceil(h/d0) spacings deep.
+      const int m = static_cast<int>(std::ceil(bp.shape.bounding_radius() / d0)) + 1;
+      for (int iy = -m; iy <= m; ++iy)
+        for (int ix = -m; ix <= m; ++ix) {
+          const Vec2 q{ix * d0, iy * d0};
+          const real sd = bp.shape.signed_distance(q);
+          if (sd > -0.5 * d0 || sd < -(dummy_layers + 0.5) * d0) continue;
+          std::size_t nearest = 0;
+          for (std::size_t s2 = 1; s2 < bp.samples.size(); ++s2)
+            if (norm2(bp.samples[s2].x - q) < norm2(bp.samples[nearest].x - q)) nearest = s2;
+          bx.push_back(g.pos + rotate(q, cth, sth));
+          blocal.push_back(q);
+          bn.push_back(bp.samples[nearest].normal);
+          bds.push_back(0);
+          bvol.push_back(d0 * d0);
+          bk.push_back(Kind::Dummy);
+          bsrc.push_back(static_cast<std::int32_t>(g.first + nearest));
+          bgroup.push_back(static_cast<std::int32_t>(sc.groups.size()));
+        }
     }
     g.count = bx.size() - g.first;
     sc.groups.push_back(g);
@@ -197,7 +318,7 @@ Scene build_scene(const Case& c) {
       // wall lying on the box edge stays).
       for (const auto& ws : c.walls)
         if (segment_distance(x, ws.from, ws.to) < 0.5 * d0 * (1 - 1e-9)) keep = false;
-      if (!keep) continue;
+      if (!keep || near_body(x)) continue;
       const real px = rng.symmetric(), py = rng.symmetric();
       fx.push_back(dom.wrap(x + (c.perturbation * d0) * Vec2{px, py}));
     }
@@ -207,7 +328,7 @@ Scene build_scene(const Case& c) {
   P.resize_boundary(nb);
   for (std::size_t i = 0; i < nb; ++i) {
     P.x[i] = bx[i];
-    P.local[i] = bx[i];  // walls: body frame = world frame at t = 0
+    P.local[i] = blocal[i];
     P.normal_local[i] = bn[i];
     P.normal[i] = bn[i];
     P.ds[i] = bds[i];

@@ -1,10 +1,13 @@
 #include "particula/solver/solver.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <numeric>
 
+#include "particula/bodies/collision.hpp"
+#include "particula/bodies/rigid_motion.hpp"
 #include "particula/boundary/wall_pressure.hpp"
 #include "particula/fluid/fluid.hpp"
 #include "particula/sph/operators.hpp"
@@ -72,7 +75,7 @@ void Solver::geometry_sweep() {
       rsum += r;
     }
     if (!renormalization_tensor(S, B_[i])) ++bad_B;
-    if (!laplacian_correction_tensor(mom, B_[i], Bhat_[i])) ++bad_Bhat;
+    if (!laplacian_correction_tensor(mom, B_[i], Bhat_[i], i < P_.n_boundary)) ++bad_Bhat;
     rbar_[i] = e > b ? rsum / static_cast<real>(e - b) : prm_.d0;
     // P.18 normal; on failure the analytic normal set by place_boundary stays.
     if (i < P_.n_boundary && prm_.kernel_normals && P_.kind[i] == Kind::Boundary) {
@@ -176,11 +179,8 @@ void Solver::rhie_chow_sweep(const std::vector<real>& p, const std::vector<real>
 // Boundary
 
 void Solver::place_boundary(real t) {
+  (void)t;  // group poses are advanced by body_update
   for (auto& g : groups_) {
-    if (g.motion == Motion::Prescribed) {
-      g.pos = g.pos0 + t * g.vel;
-      g.angle = g.angle0 + t * g.omega;
-    }
     const real c = std::cos(g.angle), s = std::sin(g.angle);
     for (std::size_t i = g.first; i < g.first + g.count; ++i) {
       P_.x[i] = domain_.wrap(g.pos + rotate(P_.local[i], c, s));
@@ -287,6 +287,7 @@ real Solver::stable_dt() const {
 std::optional<Failure> Solver::step(real dt_cap) {
   if (prm_.reorder_interval > 0 && steps_ % prm_.reorder_interval == 0) reorder_fluid();
   refresh_geometry();
+  if (auto f = collisions()) return f;
   dt_ = stable_dt();
   if (dt_cap > 0) dt_ = std::min(dt_, dt_cap);
   const real dt = dt_;
@@ -301,9 +302,18 @@ std::optional<Failure> Solver::step(real dt_cap) {
 
   v_n_ = P_.v;
   rho_n_ = P_.rho;
-  std::vector<real> p_n = P_.p;
+  p_n_ = P_.p;
+  std::vector<Vec2>& gv0 = group_v0_;
+  std::vector<real>& gw0 = group_w0_;
+  gv0.resize(groups_.size());
+  gw0.resize(groups_.size());
+  for (std::size_t k = 0; k < groups_.size(); ++k) {
+    groups_[k].vel_n = gv0[k] = groups_[k].vel;
+    groups_[k].omega_n = gw0[k] = groups_[k].omega;
+  }
 
-  // ---- predictor: V* = V^n + dt A(V^n, P^n); rho* = rho^n + dt D(V*, P^n)
+  // ---- predictor: V* = V^n + dt A(V^n, P^n); bodies from the loads of P^n, tau^n;
+  //      rho* = rho^n + dt D(V*, P^n) (continuity uses the new velocity)
   compute_velocity_derivatives(P_.v);
   gradV_n_ = gradV_;
   compute_pressure_gradient(P_.p, P_.rho);
@@ -311,6 +321,7 @@ std::optional<Failure> Solver::step(real dt_cap) {
   group_loads();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = nb; i < n; ++i) P_.v[i] = v_n_[i] + dt * momentum_rate(G_[i], lapV_[i], nu, f);
+  body_stage(dt, t_ + dt, gv0, gw0);
   set_boundary_kinematics();  // positions stay frozen during the stages
   compute_velocity_derivatives(P_.v);
 #pragma omp parallel for schedule(static)
@@ -321,14 +332,20 @@ std::optional<Failure> Solver::step(real dt_cap) {
     }
   boundary_pressure(P_.rho);
 
-  // ---- corrector: V** = V* + dt A(V*, P*); rho** = rho* + dt D(V**, P*)
+  // ---- corrector: V** = V* + dt A(V*, P*); bodies likewise; rho** = rho* + dt D(V**, P*)
   v_s_ = P_.v;
   rho_s_ = P_.rho;
+  for (std::size_t k = 0; k < groups_.size(); ++k) {
+    gv0[k] = groups_[k].vel;
+    gw0[k] = groups_[k].omega;
+  }
   compute_pressure_gradient(P_.p, P_.rho);
   rhie_chow_sweep(P_.p, P_.rho);
   group_loads();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = nb; i < n; ++i) P_.v[i] = v_s_[i] + dt * momentum_rate(G_[i], lapV_[i], nu, f);
+  body_stage(dt, t_ + dt, gv0, gw0);
+  set_boundary_kinematics();
   compute_velocity_derivatives(P_.v);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i)
@@ -348,13 +365,14 @@ std::optional<Failure> Solver::step(real dt_cap) {
     }
     if (i >= nb || prm_.single_layer || P_.kind[i] != Kind::Dummy) {
       P_.rho[i] = 0.5 * (P_.rho[i] + rho_n_[i]);
-      P_.p[i] = 0.5 * (P_.p[i] + p_n[i]);
+      P_.p[i] = 0.5 * (P_.p[i] + p_n_[i]);
     }
     vmax2 = std::max(vmax2, norm2(P_.v[i]));
   }
   if (!prm_.single_layer) boundary_pressure(P_.rho);  // dummies copy the averaged surface values
   t_ += dt;
   ++steps_;
+  body_update(dt, t_);
   place_boundary(t_);
 
   // ---- particle shifting (P.33-P.36), with the step's geometry and the new fields
@@ -365,6 +383,102 @@ std::optional<Failure> Solver::step(real dt_cap) {
     shift_particles(dt, std::sqrt(vmax2));
   }
   return check_health();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rigid bodies
+
+void Solver::body_stage(real dt, real t_stage_end, const std::vector<Vec2>& v0, const std::vector<real>& omega0) {
+  for (std::size_t k = 0; k < groups_.size(); ++k) {
+    RigidGroup& g = groups_[k];
+    if (g.motion == Motion::Free) {
+      const Vec2 weight = body_weight(g.mass, g.area, prm_.rho0, prm_.gravity, prm_.gravity_in_fluid);
+      const Vec2 force = g.force_pressure + g.force_viscous + g.force_collision + weight;
+      free_body_stage(g, v0[k], omega0[k], force, g.torque, dt);
+    } else if (g.motion == Motion::Prescribed && g.body >= 0) {
+      const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
+      const PrescribedState st = prescribed_state(b.schedule, b.velocity, b.omega, t_stage_end);
+      g.vel = st.vel;
+      g.omega = st.omega;
+      g.acc = st.acc;
+      g.alpha = st.alpha;
+    }
+  }
+}
+
+void Solver::body_update(real dt, real t_new) {
+  for (auto& g : groups_) {
+    if (g.motion == Motion::Free) {
+      free_body_update(g, g.vel_n, g.omega_n, dt);
+    } else if (g.motion == Motion::Prescribed) {
+      Vec2 vel = g.vel;
+      real omega = g.omega;
+      const std::vector<MotionKnot>* knots = nullptr;
+      if (g.body >= 0) {
+        const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
+        vel = b.velocity;
+        omega = b.omega;
+        knots = &b.schedule;
+      }
+      const PrescribedState st = prescribed_state(knots ? *knots : std::vector<MotionKnot>{}, vel, omega, t_new);
+      g.pos = g.pos0 + st.displacement;
+      g.angle = g.angle0 + st.rotation;
+      g.vel = st.vel;
+      g.omega = st.omega;
+      g.acc = st.acc;
+      g.alpha = st.alpha;
+    }
+  }
+}
+
+std::optional<Failure> Solver::collisions() {
+  for (auto& g : groups_) g.force_collision = Vec2{};
+  const real eps = prm_.collision_range > 0 ? prm_.collision_range : 3 * prm_.d0;
+  const real k = prm_.collision_stiffness;
+  const real overlap_limit = -0.25 * prm_.d0;  // interpenetration beyond sampling noise
+  auto placed = [&](const RigidGroup& g) {
+    const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
+    return PlacedBody{&b.shape, &b.samples, g.pos, g.angle};
+  };
+  auto overlap = [&](const std::string& a, const std::string& b, real gap, Vec2 where) {
+    Failure f;
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "body '%s' overlaps %s by %.3g m (%.2f d0): the collision force did not keep them apart",
+                  a.c_str(), b.c_str(), -gap, -gap / prm_.d0);
+    f.what = buf;
+    f.position = where;
+    return f;
+  };
+  for (std::size_t a = 0; a < groups_.size(); ++a) {
+    RigidGroup& ga = groups_[a];
+    if (ga.is_wall) continue;
+    const PlacedBody pa = placed(ga);
+    const real Ra = prm_.bodies[static_cast<std::size_t>(ga.body)].shape.equivalent_radius();
+    // bodies
+    for (std::size_t b = a + 1; b < groups_.size(); ++b) {
+      RigidGroup& gb = groups_[b];
+      if (gb.is_wall) continue;
+      const PlacedBody pb = placed(gb);
+      if (norm(domain_.separation(ga.pos, gb.pos)) > pa.shape->bounding_radius() + pb.shape->bounding_radius() + eps)
+        continue;
+      const Contact c = body_contact(pa, pb, domain_);
+      if (c.gap < overlap_limit) return overlap(prm_.bodies[ga.body].name, "body '" + prm_.bodies[gb.body].name + "'", c.gap, ga.pos);
+      const real Rb = pb.shape->equivalent_radius();
+      const Vec2 F = repulsive_force(c, Ra, Rb, k, eps);
+      ga.force_collision += F;
+      gb.force_collision -= F;
+    }
+    // walls, as the mirror image of the body (gap to the image = twice the gap to the wall)
+    for (const auto& w : prm_.walls) {
+      Contact c = wall_contact(pa, w.from, w.to, w.normal);
+      if (c.gap > 1e299) continue;
+      if (c.gap < overlap_limit && ga.motion == Motion::Free)
+        return overlap(prm_.bodies[ga.body].name, "a wall", c.gap, ga.pos);
+      c.gap *= 2;
+      ga.force_collision += repulsive_force(c, Ra, Ra, k, eps);
+    }
+  }
+  return std::nullopt;
 }
 
 void Solver::shift_particles(real dt, real vmax) {

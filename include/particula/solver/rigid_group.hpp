@@ -26,9 +26,18 @@ struct RigidGroup {
   // boundary particles [first, first + count) of the particle arrays
   std::size_t first = 0, count = 0;
 
-  // hydrodynamic loads of the last evaluation (P.26-P.27), split by origin
-  Vec2 force_pressure, force_viscous;
+  // bodies (is_wall == false): index into PhysicsParams::bodies, mass properties
+  int body = -1;
+  real mass = 0, inertia = 0, area = 0;
+
+  // hydrodynamic loads of the last evaluation (P.26-P.27), split by origin, and the
+  // collision force (P.38) of the step
+  Vec2 force_pressure, force_viscous, force_collision;
   real torque = 0;
+
+  // velocities at the start of the step (the predictor-corrector averages with them)
+  Vec2 vel_n;
+  real omega_n = 0;
 };
 
 }  // namespace particula

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "particula/case/case.hpp"
+#include "particula/geometry/shape.hpp"
 #include "particula/neighbors/domain.hpp"
 #include "particula/neighbors/neighbor_list.hpp"
 #include "particula/solver/particles.hpp"
@@ -14,6 +16,22 @@
 #include "particula/sph/kernel.hpp"
 
 namespace particula {
+
+/// A rigid body's shape and motion law (index = RigidGroup::body).
+struct BodyParams {
+  std::string name;
+  Shape shape;
+  std::vector<SurfaceSample> samples;  // body frame, used by the contact model
+  BodyMotion motion = BodyMotion::Free;
+  Vec2 velocity;                       // prescribed constant velocity (no schedule)
+  real omega = 0;
+  std::vector<MotionKnot> schedule;    // prescribed piecewise-linear motion
+};
+
+/// A straight wall for the contact model (fluid on the side of `normal`).
+struct WallLine {
+  Vec2 from, to, normal;
+};
 
 /// Everything the physics needs, in SI units (filled from a Case by the scene builder).
 struct PhysicsParams {
@@ -32,6 +50,10 @@ struct PhysicsParams {
   int wall_pressure_sweeps = 1;
   real rho_min_ratio = 0.5, rho_max_ratio = 2.0;
   int reorder_interval = 50;  // steps between cell reorderings of the fluid block
+  std::vector<BodyParams> bodies;
+  std::vector<WallLine> walls;
+  real collision_stiffness = 0;  // k of P.38
+  real collision_range = 0;      // eps of P.38 (m)
 };
 
 /// Counters of guarded events (written to the run log).
@@ -105,6 +127,12 @@ class Solver {
   void rhie_chow_sweep(const std::vector<real>& p, const std::vector<real>& rho);
   void boundary_pressure(const std::vector<real>& rho_ref);
   void group_loads();
+  /// Collision forces of the step (positions frozen); a failure when solids interpenetrate.
+  std::optional<Failure> collisions();
+  /// Advances the velocities of free and prescribed groups by one stage to time t_stage_end,
+  /// from the stage-start velocities v0/omega0 of each group.
+  void body_stage(real dt, real t_stage_end, const std::vector<Vec2>& v0, const std::vector<real>& omega0);
+  void body_update(real dt, real t_new);
   void shift_particles(real dt, real vmax);
   void reorder_fluid();
   std::optional<Failure> check_health() const;
@@ -122,7 +150,9 @@ class Solver {
   std::int64_t steps_ = 0;
 
   // per-particle work arrays
-  std::vector<real> vol_, rbar_, rc_, rho_n_, rho_s_, div_v_;
+  std::vector<real> vol_, rbar_, rc_, rho_n_, rho_s_, div_v_, p_n_;
+  std::vector<Vec2> group_v0_;
+  std::vector<real> group_w0_;
   std::vector<Mat2> B_, Bhat_, gradV_, gradV_n_;
   std::vector<Vec2> lapV_, G_, v_n_, v_s_, nsum_;
 };

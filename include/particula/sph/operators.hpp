@@ -88,11 +88,27 @@ PARTICULA_HD void laplacian_moments_pair(LaplacianMoments& m, real w_j, real r, 
   add_eee(m.Q3, s * r * r, e);
 }
 
+/// Largest eigenvalue accepted for Bhat (about 1 in the interior, a few next to a wall).
+inline constexpr real kMaxLaplacianCorrection = 50;
+
+/// A usable correction tensor is symmetric positive definite (so that every pair term of the
+/// Laplacian keeps the diffusive sign) and not huge. Near a convex body the one-sided moment
+/// system can be nearly singular and return an indefinite Bhat with entries of 1e4 that turn
+/// the Laplacian at a surface particle into noise (seen: wall pressure spikes of 3e3 Pa).
+PARTICULA_HD bool laplacian_correction_is_sound(const Mat2& Bh) {
+  const real tr = Bh.xx + Bh.yy, dt = Bh.xx * Bh.yy - Bh.xy * Bh.yx;
+  if (!(tr > 0 && dt > 0)) return false;
+  const real lmax = 0.5 * tr + std::sqrt(std::fmax(0.0, 0.25 * tr * tr - dt));
+  return lmax < kMaxLaplacianCorrection;
+}
+
 /// Solves Bhat : M = -I for the symmetric Bhat (P.11), with
 ///   M_abcd = T4_abcd + sum_ef T3_abe B_ef Q3_fcd.
-/// In 2D a 3x3 system in (Bhat_xx, Bhat_xy, Bhat_yy). Returns false (Bhat = I) when singular.
+/// In 2D a 3x3 system in (Bhat_xx, Bhat_xy, Bhat_yy). Returns false when the system is singular
+/// or, with `require_sound` (boundary particles, whose one-sided support can make the system
+/// nearly singular), its solution unsound; then Bhat = k I, normalized for |x|^2, or I.
 PARTICULA_HD bool laplacian_correction_tensor(const LaplacianMoments& m, const Mat2& B, Mat2& Bhat,
-                                              real rel_tol = 1e-9) {
+                                              bool require_sound = false, real rel_tol = 1e-9) {
   const real Bm[2][2] = {{B.xx, B.xy}, {B.yx, B.yy}};
   // BQ_ecd = sum_f B_ef Q3_fcd for the symmetric pairs cd (c <= d): index cd -> (0,0),(0,1),(1,1).
   const int pc[3] = {0, 0, 1}, pd[3] = {0, 1, 1};
@@ -117,22 +133,28 @@ PARTICULA_HD bool laplacian_correction_tensor(const LaplacianMoments& m, const M
   real scale = 0;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) scale = std::fmax(scale, std::fabs(A[r][c]));
-  if (!(std::fabs(D) > rel_tol * scale * scale * scale)) {
-    Bhat = identity2();
-    return false;
+  bool ok = std::fabs(D) > rel_tol * scale * scale * scale;
+  if (ok) {
+    real x[3];
+    for (int k = 0; k < 3; ++k) {
+      real Ak[3][3];
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) Ak[r][c] = (c == k) ? rhs[r] : A[r][c];
+      const real Dk = Ak[0][0] * (Ak[1][1] * Ak[2][2] - Ak[1][2] * Ak[2][1]) -
+                      Ak[0][1] * (Ak[1][0] * Ak[2][2] - Ak[1][2] * Ak[2][0]) +
+                      Ak[0][2] * (Ak[1][0] * Ak[2][1] - Ak[1][1] * Ak[2][0]);
+      x[k] = Dk / D;
+    }
+    Bhat = {x[0], x[1], x[1], x[2]};
+    if (require_sound) ok = laplacian_correction_is_sound(Bhat);
   }
-  real x[3];
-  for (int k = 0; k < 3; ++k) {
-    real Ak[3][3];
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) Ak[r][c] = (c == k) ? rhs[r] : A[r][c];
-    const real Dk = Ak[0][0] * (Ak[1][1] * Ak[2][2] - Ak[1][2] * Ak[2][1]) -
-                    Ak[0][1] * (Ak[1][0] * Ak[2][2] - Ak[1][2] * Ak[2][0]) +
-                    Ak[0][2] * (Ak[1][0] * Ak[2][1] - Ak[1][1] * Ak[2][0]);
-    x[k] = Dk / D;
-  }
-  Bhat = {x[0], x[1], x[1], x[2]};
-  return true;
+  if (ok) return true;
+  // Guard (method.md section 4): a singular or unsound system falls back to Bhat = k I, with k
+  // making the operator exact for u = |x|^2/2 (H = I): k = -2 / (I : M : I).
+  const real IMI = A[0][0] + A[0][2] + A[2][0] + A[2][2];  // multiplicities of xx and yy are 1
+  const real k = -2 / IMI;
+  Bhat = (std::isfinite(k) && k > 0 && k < kMaxLaplacianCorrection) ? k * identity2() : identity2();
+  return false;
 }
 
 /// Pair weight of the Fatehi-Manzari Laplacian: since e (x) gradW = W' e (x) e,
