@@ -1,0 +1,237 @@
+// Rigid bodies: exact shape properties, surface sampling, exact rigid kinematics inside the
+// predictor-corrector, prescribed motion, the contact model, load bookkeeping, and a
+// neutrally buoyant body at rest.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "case_builders.hpp"
+#include "particula/bodies/collision.hpp"
+#include "particula/bodies/rigid_motion.hpp"
+#include "particula/geometry/shape.hpp"
+#include "particula/scene/scene.hpp"
+#include "particula/solver/solver.hpp"
+
+using namespace particula;
+
+namespace {
+
+/// Area and polar moment about the origin by midpoint quadrature on an n x n grid.
+void integrate(const Shape& s, int n, real& area, real& polar, Vec2& centroid) {
+  const real R = s.bounding_radius() * 1.01, h = 2 * R / n;
+  area = polar = 0;
+  centroid = {};
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const Vec2 p{-R + (i + 0.5) * h, -R + (j + 0.5) * h};
+      if (s.signed_distance(p) < 0) {
+        area += h * h;
+        polar += h * h * norm2(p);
+        centroid += (h * h) * p;
+      }
+    }
+  centroid = centroid / area;
+}
+
+}  // namespace
+
+TEST(Shapes, ExactAreaAndMomentMatchQuadrature) {
+  const std::vector<Shape> shapes = {
+      Shape::circle(1.3), Shape::ellipse(2.0, 0.7), Shape::half_disc(1.1),
+      Shape::polygon({{0, 0}, {3, 0}, {3, 1}, {1, 1}, {1, 2.5}, {0, 2.5}}),  // non-convex L shape
+      Shape::polygon({{0, 0}, {2, 0.3}, {1.2, 1.9}})};
+  for (const auto& s : shapes) {
+    real A, J;
+    Vec2 c;
+    integrate(s, 2000, A, J, c);
+    EXPECT_NEAR(A / s.area(), 1.0, 2e-3) << static_cast<int>(s.kind());
+    EXPECT_NEAR(J / s.polar_moment(), 1.0, 3e-3) << static_cast<int>(s.kind());
+    EXPECT_LT(norm(c), 2e-3 * s.bounding_radius()) << "the body frame origin is the centroid";
+  }
+}
+
+TEST(Shapes, SurfaceSamplesCoverThePerimeterWithOutwardNormals) {
+  const real d0 = 0.05;
+  for (const auto& s : {Shape::circle(1.0), Shape::ellipse(2.0, 1.0), Shape::half_disc(1.0),
+                        Shape::polygon({{0, 0}, {3, 0}, {3, 1}, {1, 1}, {1, 2.5}, {0, 2.5}})}) {
+    const auto samples = s.sample_surface(d0);
+    real L = 0;
+    for (const auto& smp : samples) {
+      L += smp.ds;
+      EXPECT_NEAR(norm(smp.normal), 1.0, 1e-12);
+      EXPECT_LT(std::fabs(s.signed_distance(smp.x)), 1e-9) << "sample on the surface";
+      EXPECT_GT(s.signed_distance(smp.x + 0.3 * d0 * smp.normal), 0.0) << "normal points out";
+      EXPECT_GT(smp.ds, 0.5 * d0);
+      EXPECT_LT(smp.ds, 1.5 * d0);
+    }
+    EXPECT_NEAR(L / s.perimeter(), 1.0, 1e-9);
+  }
+}
+
+TEST(RigidMotion, FreeBodyMovesAndTurnsExactly) {
+  RigidGroup g;
+  g.motion = Motion::Free;
+  g.mass = 0.3;
+  g.inertia = 0.02;
+  g.pos = {0.1, 0.2};
+  g.vel = {0.7, -0.4};
+  g.omega = 2.5;
+  const real dt = 1e-4;
+  for (int k = 0; k < 10000; ++k) {
+    const Vec2 vn = g.vel;
+    const real wn = g.omega;
+    free_body_stage(g, vn, wn, {}, 0, dt);           // predictor
+    free_body_stage(g, g.vel, g.omega, {}, 0, dt);   // corrector
+    free_body_update(g, vn, wn, dt);
+  }
+  const real t = 1.0;
+  EXPECT_NEAR(g.pos.x, 0.1 + 0.7 * t, 1e-10);
+  EXPECT_NEAR(g.pos.y, 0.2 - 0.4 * t, 1e-10);
+  EXPECT_NEAR(g.angle, 2.5 * t, 1e-10);
+}
+
+TEST(RigidMotion, ConstantForceGivesExactParabola) {
+  RigidGroup g;
+  g.mass = 0.3;
+  g.inertia = 0.02;
+  g.vel = {0.1, 0.0};
+  const Vec2 F{0.06, -0.9};
+  const real T = 0.004, dt = 1e-4;
+  for (int k = 0; k < 10000; ++k) {
+    const Vec2 vn = g.vel;
+    const real wn = g.omega;
+    free_body_stage(g, vn, wn, F, T, dt);
+    free_body_stage(g, g.vel, g.omega, F, T, dt);
+    free_body_update(g, vn, wn, dt);
+  }
+  const real t = 1.0;
+  EXPECT_NEAR(g.pos.x, 0.1 * t + 0.5 * F.x / g.mass * t * t, 1e-12);
+  EXPECT_NEAR(g.pos.y, 0.5 * F.y / g.mass * t * t, 1e-12);
+  EXPECT_NEAR(g.vel.y, F.y / g.mass * t, 1e-12);
+  EXPECT_NEAR(g.angle, 0.5 * T / g.inertia * t * t, 1e-12);
+}
+
+TEST(RigidMotion, PrescribedScheduleIntegratesExactly) {
+  const std::vector<MotionKnot> k = {{0, {0, 0}, 0}, {0.5, {1, -2}, 4}, {1.5, {1, -2}, 4}, {2.0, {0, 0}, 0}};
+  const auto s = prescribed_state(k, {}, 0, 1.0);
+  EXPECT_NEAR(s.displacement.x, 0.25 + 0.5, 1e-14);
+  EXPECT_NEAR(s.displacement.y, -0.5 - 1.0, 1e-14);
+  EXPECT_NEAR(s.rotation, 1.0 + 2.0, 1e-14);
+  EXPECT_NEAR(s.vel.x, 1.0, 1e-14);
+  const auto late = prescribed_state(k, {}, 0, 3.0);
+  EXPECT_NEAR(late.displacement.x, 0.25 + 1.0 + 0.25, 1e-14);
+  EXPECT_EQ(late.vel.x, 0.0);
+  const auto ramp = prescribed_state(k, {}, 0, 0.25);
+  EXPECT_NEAR(ramp.acc.x, 2.0, 1e-14);
+  EXPECT_NEAR(ramp.displacement.x, 0.5 * 2.0 * 0.25 * 0.25, 1e-14);
+}
+
+TEST(Contacts, CircleRepulsionIsThePapersFormula) {
+  // P.38: F = k (r_s - r_q) [(2R + eps)^2 - d^2] for d <= 2R + eps.
+  const Shape c = Shape::circle(1e-3);
+  const auto samples = c.sample_surface(1e-4);
+  const Domain dom{{0, 0}, {1, 1}};
+  const real k = 1.5e6, eps = 3e-4;
+  for (real d : {1.9e-3, 2.0e-3, 2.1e-3, 2.29e-3, 2.31e-3}) {
+    const PlacedBody a{&c, &samples, {0.5 + d, 0.5}, 0}, b{&c, &samples, {0.5, 0.5}, 0};
+    const Contact ct = body_contact(a, b, dom);
+    EXPECT_NEAR(ct.gap, d - 2e-3, 1e-15 + 1e-12 * d);  // centre positions 0.5 + d lose digits
+    const Vec2 F = repulsive_force(ct, 1e-3, 1e-3, k, eps);
+    const real paper = d <= 2e-3 + eps ? k * d * (std::pow(2e-3 + eps, 2) - d * d) : 0.0;
+    EXPECT_NEAR(F.x, paper, 1e-9 * std::fabs(paper) + 1e-18);
+    EXPECT_EQ(F.y, 0.0);
+  }
+}
+
+TEST(Contacts, GeneralShapesAndWalls) {
+  const Shape e = Shape::ellipse(2e-3, 1e-3);
+  const auto se = e.sample_surface(5e-5);
+  const Domain dom{{0, 0}, {1, 1}};
+  // Two ellipses side by side along x with a 0.5 mm gap between their tips.
+  const PlacedBody a{&e, &se, {0.5 + 4.5e-3, 0.5}, 0}, b{&e, &se, {0.5, 0.5}, 0};
+  const Contact c = body_contact(a, b, dom);
+  EXPECT_NEAR(c.gap, 0.5e-3, 2e-6);
+  EXPECT_NEAR(c.normal.x, 1.0, 1e-3);
+  // The same ellipse turned by 90 degrees: its tip is now 1 mm closer along x than a's was.
+  const PlacedBody r{&e, &se, {0.5 + 3.5e-3, 0.5}, M_PI / 2};
+  EXPECT_NEAR(body_contact(r, b, dom).gap, 0.5e-3, 2e-6);
+  // A wall below: gap = distance from the lowest surface sample (exact to the sampling).
+  const Contact w = wall_contact(b, {0, 0.4985}, {1, 0.4985}, {0, 1});
+  EXPECT_NEAR(w.gap, 0.5e-3, 1e-7);
+  EXPECT_EQ(w.normal.y, 1.0);
+}
+
+namespace {
+Case resting_body_case(real density, real gravity_y) {
+  Case c = cases::closed_box(0.008, 0.008, 2e-4);
+  c.nu = 1e-5;
+  c.c = 1;
+  c.shifting_beta = 0.02;
+  c.gravity = {0, gravity_y};
+  BodySpec b;
+  b.name = "cylinder";
+  b.shape = BodyShape::Circle;
+  b.center = {0.004, 0.004};
+  b.radius = 1.25e-3;
+  b.density = density;
+  c.bodies.push_back(b);
+  return c;
+}
+}  // namespace
+
+namespace {
+/// Runs the resting-body case to t and returns the body's final state.
+RigidGroup run_resting(Case c, real t, real& worst_torque) {
+  Scene sc = build_scene(c);
+  Solver s(sc.params, sc.domain, sc.particles, sc.groups);
+  worst_torque = 0;
+  while (s.time() < t) {
+    EXPECT_FALSE(s.step().has_value());
+    worst_torque = std::max(worst_torque, std::fabs(s.groups().back().torque));
+  }
+  return s.groups().back();
+}
+}  // namespace
+
+TEST(BodiesInFluid, NeutrallyBuoyantCylinderStaysAtRest) {
+  // Buoyancy form (gravity removed from the fluid, P.23): the weight is balanced exactly and
+  // the perturbed fluid at rest must exert no net load.
+  real torque = 0;
+  const RigidGroup g = run_resting(resting_body_case(1000, -9.81), 0.05, torque);
+  std::printf("neutral cylinder, buoyancy form, t = 0.05 s: speed %.3g m/s, omega %.3g rad/s, max |torque| %.3g N\n",
+              norm(g.vel), g.omega, torque);
+  EXPECT_LT(norm(g.vel), 1e-6);
+  EXPECT_LT(torque, 1e-12);
+}
+
+TEST(BodiesInFluid, NeutrallyBuoyantCylinderInHydrostaticFluid) {
+  // Gravity kept in the fluid: the hydrostatic wall pressure (P.20 with g) integrated over the
+  // surface (P.26) must carry the whole weight. At R = 6.25 d0 the measured imbalance is below
+  // 1 % of the weight (speed below 1 % of g t).
+  Case c = resting_body_case(1000, -9.81);
+  c.gravity_in_fluid = true;
+  c.hydrostatic = true;
+  real torque = 0;
+  const real t = 0.05;
+  const RigidGroup g = run_resting(c, t, torque);
+  std::printf("neutral cylinder, hydrostatic fluid, t = %.2f s: speed %.3g m/s = %.3f %% of g t, omega %.3g rad/s\n", t,
+              norm(g.vel), 100 * norm(g.vel) / (9.81 * t), g.omega);
+  EXPECT_LT(norm(g.vel), 0.01 * 9.81 * t);
+  EXPECT_LT(std::fabs(g.omega), 0.05);
+}
+
+TEST(BodiesInFluid, LoadsAddUpToTheForceUsedInTheMotion) {
+  Case c = resting_body_case(1250, -9.81);
+  c.collision_stiffness = 1e7;  // the body starts 2.75 mm from the walls: no contact yet, but the path is active
+  Scene sc = build_scene(c);
+  Solver s(sc.params, sc.domain, sc.particles, sc.groups);
+  for (int k = 0; k < 20; ++k) ASSERT_FALSE(s.step().has_value());
+  const RigidGroup& g = s.groups().back();
+  // In the corrector, acc = (V** - V*)/dt = F/M with F = hydrodynamic + weight + collision.
+  const Vec2 weight = body_weight(g.mass, g.area, c.rho0, c.gravity, false);
+  const Vec2 F = g.force_pressure + g.force_viscous + g.force_collision + weight;
+  EXPECT_NEAR(g.mass * g.acc.x, F.x, 1e-9 * norm(weight));
+  EXPECT_NEAR(g.mass * g.acc.y, F.y, 1e-9 * norm(weight));
+  EXPECT_NEAR(g.inertia * g.alpha, g.torque, 1e-12);
+  EXPECT_LT(g.vel.y, 0.0) << "a heavier body sinks";
+}
