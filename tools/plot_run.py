@@ -101,31 +101,62 @@ def plot_probe(run, name, out):
         plt.close(fig)
 
 
+REFERENCE_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reference")
+
+# Published reference curves per case name: (file, x column, y column, bodies.csv column, label).
+REFERENCES = {
+    "falling_cylinder": [("glowinski2001_settling_vy.csv", "t", "vy", "vy", "Glowinski et al. 2001 (FEM)"),
+                         ("zhang2019_settling_y.csv", "t", "y", "y", "Zhang et al. 2019 (FPM)")],
+    "shear_migration": [("feng2002_migration_y.csv", "t", "y", "y", "Feng & Michaelides 2002 (LBM)")],
+    "two_cylinders_shear": [("hashemi2012_two_cylinders_vx.csv", "t", "vx", "vx", "Hashemi et al. 2012")],
+    "dkt": [("hashemi2012_dkt_vy.csv", "t", "vy", "vy", "Hashemi et al. 2012")],
+}
+
+
+def case_name(run):
+    try:
+        import tomllib
+        with open(os.path.join(run, "case.toml"), "rb") as f:
+            return tomllib.load(f).get("name", "")
+    except Exception:  # no case.toml or no tomllib: plots without reference curves
+        return ""
+
+
 def plot_bodies(run, out):
     cols = read_csv(os.path.join(run, "bodies.csv"))
     if not cols["time"]:
         return
     bodies = sorted(set(int(b) for b in cols["body"]))
-    moving = [b for b in bodies if any(abs(v) > 0 for v, bb in zip(cols["vx"], cols["body"]) if int(bb) == b)
-              or any(abs(v) > 0 for v, bb in zip(cols["vy"], cols["body"]) if int(bb) == b)]
-    fig, axes = plt.subplots(2, 2, figsize=(9, 6.5))
-    for b in bodies:
-        idx = [i for i, bb in enumerate(cols["body"]) if int(bb) == b]
-        t = [cols["time"][i] for i in idx]
-        axes[0][0].plot(t, [cols["x"][i] for i in idx], label="body %d x" % b)
-        axes[0][0].plot(t, [cols["y"][i] for i in idx], "--", label="body %d y" % b)
-        axes[0][1].plot(t, [cols["vx"][i] for i in idx], label="body %d vx" % b)
-        axes[0][1].plot(t, [cols["vy"][i] for i in idx], "--", label="body %d vy" % b)
-        axes[1][0].plot(t, [cols["fx"][i] for i in idx], label="body %d fx" % b)
-        axes[1][0].plot(t, [cols["fy"][i] for i in idx], "--", label="body %d fy" % b)
-        axes[1][1].plot(t, [cols["angle"][i] for i in idx], label="body %d angle" % b)
-    titles = [("position (m)"), ("velocity (m/s)"), ("hydrodynamic force (N/m)"), ("angle (rad)")]
-    for ax, title in zip([axes[0][0], axes[0][1], axes[1][0], axes[1][1]], titles):
+    refs = REFERENCES.get(case_name(run), [])
+    panels = [("x", "y", "position (m)"), ("vx", "vy", "velocity (m/s)"), ("fx", "fy", "hydrodynamic force (N/m)"),
+              ("angle", None, "angle (rad)")]
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7))
+    for ax, (a, b, title) in zip([axes[0][0], axes[0][1], axes[1][0], axes[1][1]], panels):
+        for body in bodies:
+            idx = [i for i, bb in enumerate(cols["body"]) if int(bb) == body]
+            t = [cols["time"][i] for i in idx]
+            ax.plot(t, [cols[a][i] for i in idx], label="body %d %s" % (body, a))
+            if b:
+                ax.plot(t, [cols[b][i] for i in idx], "--", label="body %d %s" % (body, b))
+        for (fname, xc, yc, col, label) in refs:
+            if col not in (a, b):
+                continue
+            path = os.path.join(REFERENCE_DIR, fname)
+            if not os.path.exists(path):
+                continue
+            ref = read_csv(path)
+            if "body" in ref:
+                for rb in sorted(set(int(v) for v in ref["body"])):
+                    ii = [i for i, v in enumerate(ref["body"]) if int(v) == rb]
+                    ax.plot([ref[xc][i] for i in ii], [ref[yc][i] for i in ii], "o", ms=4,
+                            label="%s, body %d" % (label, rb))
+            else:
+                ax.plot(ref[xc], ref[yc], "ko", ms=4, label=label)
         ax.set_xlabel("t (s)")
         ax.set_ylabel(title)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
-    fig.suptitle("rigid groups (walls and bodies)%s" % ("" if moving else ": none moves"))
+    fig.suptitle("bodies of '%s'" % (case_name(run) or run))
     fig.tight_layout()
     fig.savefig(os.path.join(out, "bodies.png"), dpi=120)
     plt.close(fig)

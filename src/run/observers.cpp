@@ -112,15 +112,21 @@ void ProbeWriter::write(const Solver& s) {
 
 BodyHistoryWriter::BodyHistoryWriter(const std::filesystem::path& run_dir)
     : csv_(run_dir / "bodies.csv", {"time", "body", "x", "y", "angle", "vx", "vy", "omega", "fx", "fy", "torque",
-                                    "fpx", "fpy", "fvx", "fvy", "fcx", "fcy"}) {}
+                                    "fpx", "fpy", "fvx", "fvy", "fcx", "fcy"}),
+      walls_(run_dir / "walls.csv", {"time", "wall", "fx", "fy", "fpx", "fpy", "fvx", "fvy"}) {}
 
 void BodyHistoryWriter::write(const Solver& s) {
-  const auto& groups = s.groups();
-  for (std::size_t b = 0; b < groups.size(); ++b) {
-    const RigidGroup& g = groups[b];
+  int wall = 0;
+  for (const RigidGroup& g : s.groups()) {
     const Vec2 f = g.force_pressure + g.force_viscous;
-    csv_.row({s.time(), static_cast<double>(b), g.pos.x, g.pos.y, g.angle, g.vel.x, g.vel.y, g.omega, f.x, f.y,
-              g.torque, g.force_pressure.x, g.force_pressure.y, g.force_viscous.x, g.force_viscous.y, 0.0, 0.0});
+    if (g.is_wall) {
+      walls_.row({s.time(), static_cast<double>(wall++), f.x, f.y, g.force_pressure.x, g.force_pressure.y,
+                  g.force_viscous.x, g.force_viscous.y});
+      continue;
+    }
+    csv_.row({s.time(), static_cast<double>(g.body), g.pos.x, g.pos.y, g.angle, g.vel.x, g.vel.y, g.omega, f.x, f.y,
+              g.torque, g.force_pressure.x, g.force_pressure.y, g.force_viscous.x, g.force_viscous.y,
+              g.force_collision.x, g.force_collision.y});
   }
 }
 

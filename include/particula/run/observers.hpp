@@ -43,14 +43,16 @@ class ProbeWriter {
   std::optional<double> last_error_;
 };
 
-/// bodies.csv: one row per rigid group (walls included) per output, columns of design.md.
+/// bodies.csv: one row per body per output, columns of design.md (f = hydrodynamic force,
+/// pressure part fp + viscous part fv; fc = collision force, P.38), and walls.csv: the
+/// hydrodynamic force on each wall segment (e.g. the wall shear of a Couette flow).
 class BodyHistoryWriter {
  public:
   explicit BodyHistoryWriter(const std::filesystem::path& run_dir);
   void write(const Solver& s);
 
  private:
-  io::CsvWriter csv_;
+  io::CsvWriter csv_, walls_;
 };
 
 /// The exact solution the case declares, evaluated at (y, t); nullopt when it has none.
