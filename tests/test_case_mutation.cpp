@@ -68,6 +68,24 @@ from = [5e-4, 0.0]
 to = [5e-4, 2e-3]
 points = 11
 interval = 0.1
+
+[collision]
+stiffness = 1.5e6
+range = 7.5e-5
+
+[[body]]
+name = "drop"
+shape = "circle"
+center = [5e-4, 1.4e-3]
+radius = 2e-4
+density = 1200
+velocity = [0, -1e-4]
+
+[[body]]
+shape = "polygon"
+vertices = [[3e-4, 3e-4], [7e-4, 3e-4], [5e-4, 7e-4]]
+motion = "prescribed"
+schedule = [[0, 0, 0, 0], [0.5, 1e-4, 0, 0.1]]
 )";
 
 /// A small deterministic generator (same sequence on every platform).
@@ -191,9 +209,28 @@ TEST(CaseMutation, OverridesWithGarbage) {
                               "domain.periodic",
                               "x",
                               "probe.9.name",
+                              "body.0.radius",
+                              "body.1.vertices",
+                              "body.1.schedule",
+                              "body.0.shape",
+                              "collision.range",
                               ""};
-  const std::string values[] = {"1",     "-1",   "[1,2]", "nan", "\"s\"",   "[",
-                                "1e999", "true", "a b",   "",    "\x01\xff"};
+  const std::string values[] = {"1",
+                                "-1",
+                                "[1,2]",
+                                "nan",
+                                "\"s\"",
+                                "[",
+                                "1e999",
+                                "true",
+                                "a b",
+                                "",
+                                "\x01\xff",
+                                "[[0,0],[1,0],[0,1]]",
+                                "[[0,0,0,0],[1,1,1,1]]",
+                                "[[1,2],[3]]",
+                                "polygon",
+                                "[[]]"};
   for (int i = 0; i < 300; ++i) {
     std::string o = keys[rng.below(std::size(keys))];
     if (rng.below(8) != 0) o += "=";

@@ -1,4 +1,5 @@
 // resolved_case_toml: the fully resolved case reads back as an identical Case.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 #include <unistd.h>
@@ -71,6 +72,10 @@ checkpoint_interval = 0.5
 rho_min_ratio = 0.9
 rho_max_ratio = 1.1
 
+[collision]
+stiffness = 1.5e6
+range = 7.5e-5
+
 [[wall]]
 name = "bottom"
 from = [0.30000000000000004, 0]
@@ -94,6 +99,39 @@ from = [-0.1, 9e-4]
 to = [0.1, 9e-4]
 points = 2
 interval = 1
+
+[[body]]
+name = "drop"
+shape = "ellipse"
+center = [-0.1, 5e-4]
+semi_axes = [3e-4, 2.6e-4]
+angle = 0.3
+density = 1234.5
+velocity = [1e-4, -2e-5]
+omega = -0.5
+
+[[body]]
+shape = "polygon"
+vertices = [[0.1, 2e-4], [0.1005, 2e-4], [0.1005, 8e-4], [0.1, 8e-4], [0.09975, 5e-4]]
+motion = "prescribed"
+schedule = [[-1, 0, 0, 0], [0.5, 1e-5, -0.0, 0.1], [1.5, 0.30000000000000004, 0, -0.2]]
+
+[[body]]
+name = "bump"
+shape = "half_disc"
+center = [0.2, 0]
+radius = 6e-4
+angle = 1.5707963267948966
+motion = "fixed"
+
+[[body]]
+name = "pusher"
+shape = "circle"
+center = [0.25, 5e-4]
+radius = 3e-4
+motion = "prescribed"
+velocity = [1e-3, 0]
+omega = 0.01
 )";
 
 /// Bitwise equality of reals (so that -0.0 and 0.0 differ, as they would after printing).
@@ -156,6 +194,29 @@ void expect_same(const Case& a, const Case& b) {
     EXPECT_EQUAL(probes[i].points);
     EXPECT_SAME(probes[i].interval);
   }
+  EXPECT_SAME(collision_stiffness);
+  EXPECT_SAME(collision_range);
+  ASSERT_EQ(a.bodies.size(), b.bodies.size());
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+    EXPECT_EQUAL(bodies[i].name);
+    EXPECT_EQUAL(bodies[i].shape);
+    EXPECT_SAME(bodies[i].center);
+    EXPECT_SAME(bodies[i].radius);
+    EXPECT_SAME(bodies[i].semi_axes);
+    ASSERT_EQ(a.bodies[i].vertices.size(), b.bodies[i].vertices.size());
+    for (std::size_t k = 0; k < a.bodies[i].vertices.size(); ++k) EXPECT_SAME(bodies[i].vertices[k]);
+    EXPECT_SAME(bodies[i].angle);
+    EXPECT_SAME(bodies[i].density);
+    EXPECT_EQUAL(bodies[i].motion);
+    EXPECT_SAME(bodies[i].velocity);
+    EXPECT_SAME(bodies[i].omega);
+    ASSERT_EQ(a.bodies[i].schedule.size(), b.bodies[i].schedule.size());
+    for (std::size_t k = 0; k < a.bodies[i].schedule.size(); ++k) {
+      EXPECT_SAME(bodies[i].schedule[k].t);
+      EXPECT_SAME(bodies[i].schedule[k].velocity);
+      EXPECT_SAME(bodies[i].schedule[k].omega);
+    }
+  }
 }
 
 /// Loads the resolved text of `a` and checks that it gives `a` again, and the same text.
@@ -173,6 +234,8 @@ TEST(CaseRoundTrip, FullCase) {
   EXPECT_EQ(a.walls[1].name, "wall1");
   EXPECT_EQ(a.seed, 9007199254740993u);  // not representable as a double: stays an integer
   EXPECT_TRUE(std::signbit(a.body_force.y));
+  EXPECT_EQ(a.bodies[1].name, "body1");
+  EXPECT_TRUE(std::signbit(a.bodies[1].schedule[1].velocity.y));
   expect_round_trip(a);
 }
 
@@ -194,15 +257,46 @@ from = [0, 0]
 to = [1, 1]
 points = 5
 interval = 0.1
+[[body]]
+shape = "circle"
+center = [0.2, 0.2]
+radius = 0.1
+density = 1000
+[[body]]
+shape = "ellipse"
+center = [0.7, 0.2]
+semi_axes = [0.15, 0.1]
+motion = "fixed"
+[[body]]
+shape = "polygon"
+vertices = [[0.1, 0.5], [0.4, 0.5], [0.25, 0.8]]
+motion = "prescribed"
+schedule = [[0, 0, 0, 0], [1, 0, 0, 1]]
+[[body]]
+shape = "half_disc"
+center = [1, 0.6]
+radius = 0.2
+angle = 3.141592653589793
+motion = "fixed"
 )";
   const Case a = load_case_text(minimal, kFile);
   const std::string text = resolved_case_toml(a);
   const toml::table doc = toml::parse(text);
   for (const KeySpec& s : case_schema()) {
     if (s.key == "fluid.mu") continue;  // viscosity is written as fluid.nu
-    std::string path = s.key;
-    if (const auto p = path.find("[]"); p != std::string::npos) path.replace(p, 2, "[0]");
-    EXPECT_TRUE(doc.at_path(path)) << s.key << " missing from\n" << text;
+    // Every key is written for some element; members of another shape or motion are not.
+    const std::size_t n = s.in_array() ? find_section(s.section())->size(a) : 1;
+    int written = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      std::string path = s.key;
+      if (const auto p = path.find("[]"); p != std::string::npos) path.replace(p, 2, fmt::format("[{}]", i));
+      const bool present = static_cast<bool>(doc.at_path(path));
+      written += present;
+      if (!s.used_for(a, i)) {
+        EXPECT_FALSE(present) << path << " written for an element that does not use it";
+      }
+    }
+    EXPECT_GT(written, 0) << s.key << " missing from\n" << text;
   }
   expect_round_trip(a);
 }
@@ -235,7 +329,7 @@ TEST(CaseRoundTrip, RandomRealsKeepEveryBit) {
   };
   Case a = load_case_text(kFull, kFile);
   for (int i = 0; i < 200; ++i) {
-    a.d0 = std::exp(uniform(std::log(1e-7), std::log(1e-3)));
+    a.d0 = std::exp(uniform(std::log(1e-9), std::log(5e-5)));  // the bodies need 10 d0 across
     a.h_over_d0 = uniform(1.5, 4);
     a.rho0 = uniform(1, 2e4);
     a.nu = std::exp(uniform(-20, 0));
@@ -245,6 +339,11 @@ TEST(CaseRoundTrip, RandomRealsKeepEveryBit) {
     a.cfl = uniform(1e-3, 1);
     a.walls[0].velocity = {uniform(-1, 1), 0};
     a.probes[0].interval = uniform(1e-6, 1);
+    a.bodies[0].angle = uniform(-10, 10);
+    a.bodies[0].density = uniform(1, 2e4);
+    a.bodies[1].schedule[2].velocity = {uniform(-1, 1), uniform(-1e-300, 1e280)};
+    a.bodies[1].vertices[4].x = uniform(0.0997, 0.09999);
+    a.collision_stiffness = std::exp(uniform(0, 40));
     SCOPED_TRACE(i);
     expect_round_trip(a);
     if (HasFailure()) break;

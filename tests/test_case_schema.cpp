@@ -2,6 +2,7 @@
 // docs/case-files.md is exactly the reference generated from it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <set>
@@ -17,7 +18,10 @@ namespace {
 
 const std::filesystem::path kDocs = std::filesystem::path(PARTICULA_SOURCE_DIR) / "docs" / "case-files.md";
 
-bool numeric(ValueType t) { return t == ValueType::Real || t == ValueType::Int || t == ValueType::Vec2; }
+bool numeric(ValueType t) {
+  return t == ValueType::Real || t == ValueType::Int || t == ValueType::Vec2 || t == ValueType::Vec2List ||
+         t == ValueType::Real4Table;
+}
 
 /// The alternative of Value that a key of type `t` holds.
 std::size_t value_index(ValueType t) {
@@ -35,6 +39,10 @@ std::size_t value_index(ValueType t) {
       return 4;
     case ValueType::Bool2:
       return 5;
+    case ValueType::Vec2List:
+      return 6;
+    case ValueType::Real4Table:
+      return 7;
   }
   return 99;
 }
@@ -67,6 +75,22 @@ TEST(CaseSchema, RowsAreWellFormed) {
     if (s.need == Need::OneOf) {
       EXPECT_FALSE(s.group.empty());
     }
+    if (s.type == ValueType::Vec2List || s.type == ValueType::Real4Table) {
+      EXPECT_GE(s.min_items, 1u);
+    }
+    if (s.type == ValueType::Real4Table) {
+      EXPECT_EQ(s.columns.size(), 4u);
+    }
+    if (s.used_when) {  // decided by an earlier choice member of the same element
+      const KeySpec* decider = find_key(s.used_when->key);
+      ASSERT_NE(decider, nullptr);
+      EXPECT_EQ(decider->type, ValueType::Choice);
+      EXPECT_EQ(decider->section(), s.section());
+      EXPECT_LT(decider, &s);
+      for (const std::string& v : s.used_when->values)
+        EXPECT_NE(std::find(decider->choices.begin(), decider->choices.end(), v), decider->choices.end())
+            << v;
+    }
   }
 }
 
@@ -93,10 +117,25 @@ TEST(CaseSchema, DefaultsAgreeWithCaseHpp) {
   Case fresh;
   fresh.walls.resize(1);
   fresh.probes.resize(1);
+  fresh.bodies.resize(1);
+  fresh.bodies[0].motion = BodyMotion::Prescribed;  // so that body[].schedule is used
   for (const KeySpec& s : case_schema()) {
     if (s.need != Need::Default || s.default_for) continue;
     SCOPED_TRACE(s.key);
-    EXPECT_EQ(format_toml_value(*s.bind.get(fresh, 0)), format_toml_value(s.default_value));
+    if (s.key == "body[].motion") {
+      EXPECT_EQ(format_toml_value(s.default_value), "\"free\"");
+      EXPECT_EQ(BodySpec{}.motion, BodyMotion::Free);
+      continue;
+    }
+    ASSERT_TRUE(s.used_for(fresh, 0));
+    const std::optional<Value> v = s.bind.get(fresh, 0);
+    if (s.key == "body[].schedule") {  // an empty schedule is not written back
+      EXPECT_FALSE(v);
+      EXPECT_TRUE(std::get<std::vector<Real4>>(s.default_value).empty());
+      continue;
+    }
+    ASSERT_TRUE(v);
+    EXPECT_EQ(format_toml_value(*v), format_toml_value(s.default_value));
   }
 }
 
@@ -130,6 +169,19 @@ TEST(CaseDocs, EveryKeyIsDocumented) {
   const std::string doc = case_reference_markdown();
   for (const KeySpec& s : case_schema())
     EXPECT_NE(doc.find("| `" + s.key + "` |"), std::string::npos) << s.key;
+}
+
+TEST(CaseDocs, EveryExampleLoads) {
+  const std::string doc = case_reference_markdown();
+  int examples = 0;
+  for (auto b = doc.find("```toml\n"); b != std::string::npos; b = doc.find("```toml\n", b + 1)) {
+    const auto e = doc.find("```", b + 8);
+    ASSERT_NE(e, std::string::npos);
+    SCOPED_TRACE(examples);
+    EXPECT_NO_THROW(load_case_text(doc.substr(b + 8, e - b - 8), "docs/case-files.md"));
+    ++examples;
+  }
+  EXPECT_GE(examples, 2);
 }
 
 TEST(CaseDocs, MinimalExampleLoads) {

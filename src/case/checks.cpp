@@ -1,8 +1,17 @@
 // Consistency checks between keys, run after every key passed its own type and range check.
 // To add one, write a function below and append it to kChecks.
+// Bodies: keys used by their shape or motion only, valid polygons, density of free bodies,
+// schedules, size against d0, inside the domain, no overlap at t = 0.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
+#include <string_view>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "internal.hpp"
 
@@ -58,10 +67,492 @@ void check_walls(const Case& c, const LoadContext& ctx) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Bodies.
+
+/// Members used only for some choices (body[].radius for circles and half-discs) must not be
+/// given for others.
+void check_unused_keys(const Case& c, const LoadContext& ctx) {
+  for (const SectionSpec& sec : case_sections()) {
+    if (!sec.array) continue;
+    for (std::size_t i = 0; i < sec.size(c); ++i) {
+      for (const KeySpec& s : case_schema()) {
+        if (s.section() != sec.name || s.used_for(c, i)) continue;
+        const std::string key = concrete_key(s.key, i);
+        if (!ctx.given.contains(key)) continue;
+        const KeySpec& decider = *find_key(s.used_when->key);
+        throw ctx.error(key, fmt::format("not used by {} '{}' (only by {} {})", decider.leaf(),
+                                         std::get<std::string>(*decider.bind.get(c, i)), decider.leaf(),
+                                         fmt::join(s.used_when->values, ", ")));
+      }
+    }
+  }
+}
+
+std::string body_key(std::size_t k, std::string_view leaf) { return fmt::format("body[{}].{}", k, leaf); }
+
+/// The key that places a body: its centre, or its vertices for a polygon.
+std::string place_key(const Case& c, std::size_t k) {
+  return body_key(k, c.bodies[k].shape == BodyShape::Polygon ? "vertices" : "center");
+}
+
+/// The shape's name in the case file (the choices of body[].shape follow the enumerators).
+const std::string& shape_name(BodyShape s) {
+  return find_key("body[].shape")->choices.at(static_cast<std::size_t>(s));
+}
+
+/// "body 'disc' (circle)".
+std::string body_text(const BodySpec& b) {
+  return fmt::format("body '{}' ({})", b.name, shape_name(b.shape));
+}
+
+/// Twice the signed area of a polygon (positive when counter-clockwise), computed relative to
+/// its first vertex so that far-off coordinates do not overflow.
+real twice_area(const std::vector<Vec2>& v) {
+  real a = 0;
+  for (std::size_t i = 1; i + 1 < v.size(); ++i) a += cross(v[i] - v[0], v[i + 1] - v[0]);
+  return a;
+}
+
+/// Area centroid of a polygon of non-zero area.
+Vec2 centroid(const std::vector<Vec2>& v) {
+  Vec2 m;
+  for (std::size_t i = 1; i + 1 < v.size(); ++i) {  // fan of triangles from v[0]
+    const Vec2 p = v[i] - v[0], q = v[i + 1] - v[0];
+    m += (cross(p, q) / 3) * (p + q);
+  }
+  return v[0] + m / twice_area(v);
+}
+
+/// Diagonal of the bounding box (the size that scales tolerances).
+real extent(const std::vector<Vec2>& v) {
+  Vec2 lo = v[0], hi = v[0];
+  for (const Vec2& p : v) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  return norm(hi - lo);
+}
+
+/// Sign of x with a dead band of +-eps.
+int sign(real x, real eps) { return x > eps ? 1 : (x < -eps ? -1 : 0); }
+
+/// p on the segment [a, b], given that the three are collinear.
+bool within(Vec2 a, Vec2 b, Vec2 p, real eps) {
+  return p.x >= std::min(a.x, b.x) - eps && p.x <= std::max(a.x, b.x) + eps &&
+         p.y >= std::min(a.y, b.y) - eps && p.y <= std::max(a.y, b.y) + eps;
+}
+
+/// Whether the closed segments [p1, p2] and [q1, q2] share a point. `area_eps` is the dead band of
+/// the orientation tests (an area), `len_eps` that of the collinear overlap tests.
+bool segments_meet(Vec2 p1, Vec2 p2, Vec2 q1, Vec2 q2, real area_eps, real len_eps) {
+  const int d1 = sign(cross(q2 - q1, p1 - q1), area_eps), d2 = sign(cross(q2 - q1, p2 - q1), area_eps);
+  const int d3 = sign(cross(p2 - p1, q1 - p1), area_eps), d4 = sign(cross(p2 - p1, q2 - p1), area_eps);
+  if (d1 * d2 < 0 && d3 * d4 < 0) return true;
+  return (d1 == 0 && within(q1, q2, p1, len_eps)) || (d2 == 0 && within(q1, q2, p2, len_eps)) ||
+         (d3 == 0 && within(p1, p2, q1, len_eps)) || (d4 == 0 && within(p1, p2, q2, len_eps));
+}
+
+/// Whether edges i and j (i < j) of the closed polygon v meet other than at a vertex they share.
+bool edges_meet(const std::vector<Vec2>& v, std::size_t i, std::size_t j, real area_eps, real len_eps) {
+  const std::size_t n = v.size();
+  const Vec2 a = v[i], a2 = v[(i + 1) % n], q = v[j], q2 = v[(j + 1) % n];
+  if (j == i + 1)  // neighbours sharing a2 == q: they meet elsewhere only by folding back
+    return sign(cross(a - q, q2 - q), area_eps) == 0 && dot(a - q, q2 - q) > 0;
+  if (i == 0 && j == n - 1)  // neighbours sharing a == q2
+    return sign(cross(a2 - a, q - a), area_eps) == 0 && dot(a2 - a, q - a) > 0;
+  return segments_meet(a, a2, q, q2, area_eps, len_eps);
+}
+
+/// Polygons: distinct consecutive vertices, not all on one line, no edge meeting another
+/// except its neighbours at their shared vertex.
+void check_polygons(const Case& c, const LoadContext& ctx) {
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    const BodySpec& b = c.bodies[k];
+    if (b.shape != BodyShape::Polygon) continue;
+    const std::vector<Vec2>& v = b.vertices;
+    const std::size_t n = v.size();
+    const std::string key = body_key(k, "vertices");
+    const real L = extent(v), len_eps = 1e-12 * L, area_eps = 1e-12 * L * L;
+    if (!std::isfinite(area_eps))
+      throw ctx.error(key, fmt::format("polygon is absurdly large ({:.3g} m across)", L));
+    const auto at = [&](std::size_t i) { return ctx.item_line(key, i); };
+    for (std::size_t i = 0; i < n; ++i)
+      if (norm(v[(i + 1) % n] - v[i]) <= len_eps)
+        throw ctx.error_at(
+            key, at((i + 1) % n),
+            fmt::format("polygon has zero area or repeated points: vertices[{}] and vertices[{}] are "
+                        "the same point {}",
+                        i, (i + 1) % n, vec(v[i])));
+    // All on one line: no vertex off the line through vertex 0 and the vertex farthest from it.
+    std::size_t far = 0;
+    for (std::size_t i = 1; i < n; ++i)
+      if (norm(v[i] - v[0]) > norm(v[far] - v[0])) far = i;
+    bool collinear = true;
+    for (std::size_t i = 0; i < n && collinear; ++i)
+      collinear = sign(cross(v[far] - v[0], v[i] - v[0]), area_eps) == 0;
+    if (collinear) throw ctx.error(key, "polygon has zero area: all its vertices lie on one line");
+    // Edges that meet: a sweep along x tests only pairs whose x ranges overlap; of all such pairs
+    // the first in (i, j) order is reported.
+    std::vector<std::size_t> order(n);
+    std::vector<real> xlo(n), xhi(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      order[i] = i;
+      xlo[i] = std::min(v[i].x, v[(i + 1) % n].x);
+      xhi[i] = std::max(v[i].x, v[(i + 1) % n].x);
+    }
+    std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return xlo[p] < xlo[q]; });
+    std::optional<std::pair<std::size_t, std::size_t>> first;
+    for (std::size_t p = 0; p < n; ++p) {
+      for (std::size_t q = p + 1; q < n && xlo[order[q]] <= xhi[order[p]] + len_eps; ++q) {
+        const std::size_t i = std::min(order[p], order[q]), j = std::max(order[p], order[q]);
+        if ((!first || std::pair{i, j} < *first) && edges_meet(v, i, j, area_eps, len_eps))
+          first = std::pair{i, j};
+      }
+    }
+    if (first) {
+      const auto [i, j] = *first;
+      throw ctx.error_at(
+          key, at(j),
+          fmt::format("polygon intersects itself: edge vertices[{}] -> vertices[{}] ({} -> {}) meets "
+                      "edge vertices[{}] -> vertices[{}] ({} -> {})",
+                      i, (i + 1) % n, vec(v[i]), vec(v[(i + 1) % n]), j, (j + 1) % n, vec(v[j]),
+                      vec(v[(j + 1) % n])));
+    }
+    if (sign(twice_area(v), area_eps) == 0) throw ctx.error(key, "polygon has zero area");
+  }
+}
+
+/// A free body needs a density (its mass and moment of inertia).
+void check_density(const Case& c, const LoadContext& ctx) {
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    const BodySpec& b = c.bodies[k];
+    if (b.motion != BodyMotion::Free || b.density > 0) continue;
+    const std::string key = body_key(k, "density");
+    if (!ctx.given.contains(key))
+      throw ctx.error(key,
+                      "missing density: a free body needs density > 0 kg/m^3 for its mass (or give "
+                      "motion = \"fixed\" or \"prescribed\")");
+    throw ctx.error(key, fmt::format("a free body needs density > 0 kg/m^3 for its mass, got {}", b.density));
+  }
+}
+
+/// A prescribed schedule starts at t <= 0 and its times increase strictly.
+void check_schedules(const Case& c, const LoadContext& ctx) {
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    const std::vector<MotionKnot>& s = c.bodies[k].schedule;
+    const std::string key = body_key(k, "schedule");
+    if (!s.empty() && s[0].t > 0)
+      throw ctx.error_at(key, ctx.item_line(key, 0),
+                         fmt::format("the first row must be at t <= 0 so that the motion is defined from the "
+                                     "start, got t = {} s",
+                                     s[0].t));
+    for (std::size_t i = 1; i < s.size(); ++i)
+      if (!(s[i].t > s[i - 1].t))
+        throw ctx.error_at(
+            key, ctx.item_line(key, i),
+            fmt::format("schedule times must increase strictly: schedule[{}] at t = {} s does not "
+                        "come after schedule[{}] at t = {} s",
+                        i, s[i].t, i - 1, s[i - 1].t));
+  }
+}
+
+/// A fixed body does not move: a velocity would be silently ignored.
+void check_fixed_bodies(const Case& c, const LoadContext& ctx) {
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    const BodySpec& b = c.bodies[k];
+    if (b.motion != BodyMotion::Fixed) continue;
+    if (b.velocity.x != 0 || b.velocity.y != 0)
+      throw ctx.error(
+          body_key(k, "velocity"),
+          fmt::format("a fixed body does not move, but velocity is {} (use motion = \"prescribed\")",
+                      vec(b.velocity)));
+    if (b.omega != 0)
+      throw ctx.error(body_key(k, "omega"),
+                      fmt::format("a fixed body does not move, but omega is {} rad/s (use motion = "
+                                  "\"prescribed\")",
+                                  b.omega));
+  }
+}
+
+/// Smallest width of a polygon: over its edges, the largest distance of a vertex from the edge
+/// line, minimised (exact for convex polygons, an upper bound otherwise).
+real polygon_width(const std::vector<Vec2>& v) {
+  real w = std::numeric_limits<real>::infinity();
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vec2 e = v[(i + 1) % v.size()] - v[i];
+    real far = 0;
+    for (const Vec2& p : v) far = std::max(far, std::fabs(cross(e, p - v[i])) / norm(e));
+    w = std::min(w, far);
+  }
+  return w;
+}
+
+/// A body needs at least this many particles across its smallest dimension.
+constexpr real kMinParticlesAcross = 10;
+
+void check_body_sizes(const Case& c, const LoadContext& ctx) {
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    const BodySpec& b = c.bodies[k];
+    real width = 0;
+    const char* what = "";
+    const char* leaf = "";
+    switch (b.shape) {
+      case BodyShape::Circle:
+        width = 2 * b.radius, what = "diameter", leaf = "radius";
+        break;
+      case BodyShape::Ellipse:
+        width = 2 * std::min(b.semi_axes.x, b.semi_axes.y), what = "minor axis", leaf = "semi_axes";
+        break;
+      case BodyShape::Polygon:
+        width = polygon_width(b.vertices), what = "width", leaf = "vertices";
+        break;
+      case BodyShape::HalfDisc:
+        width = b.radius, what = "radius", leaf = "radius";
+        break;
+    }
+    const real across = width / c.d0;
+    if (across >= kMinParticlesAcross * (1 - 1e-9)) continue;  // exactly 10 across passes despite rounding
+    throw ctx.error(body_key(k, leaf),
+                    fmt::format("{} is too small for d0 = {:.6g} m: its smallest dimension ({}) is {:.6g} m, "
+                                "only {:.3g} particles across; it needs at least {}",
+                                body_text(b), c.d0, what, width, across, kMinParticlesAcross));
+  }
+}
+
+/// A body's outline at t = 0 in world coordinates.
+struct Outline {
+  const BodySpec* body = nullptr;
+  Vec2 center;              // centre (circle, ellipse), disc centre (half_disc), area centroid (polygon)
+  real cs = 1, sn = 0;      // cos and sin of the angle
+  std::vector<Vec2> verts;  // polygon: rotated by the angle about the centroid
+  real bound = 0;           // radius about `center` of a circle holding the body
+  Vec2 lo, hi;              // bounding box
+
+  explicit Outline(const BodySpec& b) : body(&b), cs(std::cos(b.angle)), sn(std::sin(b.angle)) {
+    const real R = b.radius, a = b.semi_axes.x, e = b.semi_axes.y;
+    switch (b.shape) {
+      case BodyShape::Circle:
+        center = b.center, bound = R, lo = center - Vec2{R, R}, hi = center + Vec2{R, R};
+        break;
+      case BodyShape::Ellipse: {
+        center = b.center, bound = std::max(a, e);
+        const Vec2 half{std::hypot(a * cs, e * sn), std::hypot(a * sn, e * cs)};
+        lo = center - half, hi = center + half;
+        break;
+      }
+      case BodyShape::HalfDisc: {
+        center = b.center, bound = R;
+        // Along each axis direction d: R where the round side faces d, else the flat side's ends.
+        const Vec2 u{cs, sn}, w{-sn, cs};
+        const auto reach = [&](Vec2 d) { return dot(d, u) >= 0 ? R : R * std::fabs(dot(d, w)); };
+        lo = center - Vec2{reach({-1, 0}), reach({0, -1})};
+        hi = center + Vec2{reach({1, 0}), reach({0, 1})};
+        break;
+      }
+      case BodyShape::Polygon: {
+        center = centroid(b.vertices);
+        lo = hi = center;
+        for (const Vec2& p : b.vertices) {
+          verts.push_back(center + rotate(p - center, cs, sn));
+          bound = std::max(bound, norm(p - center));
+          lo = {std::min(lo.x, verts.back().x), std::min(lo.y, verts.back().y)};
+          hi = {std::max(hi.x, verts.back().x), std::max(hi.y, verts.back().y)};
+        }
+        break;
+      }
+    }
+  }
+
+  /// World point -> body frame (relative to `center`, unrotated).
+  Vec2 local(Vec2 p) const { return rotate(p - center, cs, -sn); }
+
+  /// Whether p lies inside the body by more than tol.
+  bool contains(Vec2 p, real tol) const {
+    const BodySpec& b = *body;
+    const Vec2 q = local(p);
+    switch (b.shape) {
+      case BodyShape::Circle:
+        return norm(q) < b.radius - tol;
+      case BodyShape::Ellipse: {
+        const real a = b.semi_axes.x - tol, e = b.semi_axes.y - tol;
+        return a > 0 && e > 0 && (q.x / a) * (q.x / a) + (q.y / e) * (q.y / e) < 1;
+      }
+      case BodyShape::HalfDisc:
+        return q.x > tol && norm(q) < b.radius - tol;
+      case BodyShape::Polygon: {
+        bool in = false;  // even-odd rule
+        real gap = std::numeric_limits<real>::infinity();
+        for (std::size_t i = 0, j = verts.size() - 1; i < verts.size(); j = i++) {
+          const Vec2 vi = verts[i], vj = verts[j];
+          if ((vi.y > p.y) != (vj.y > p.y) && p.x < (vj.x - vi.x) * (p.y - vi.y) / (vj.y - vi.y) + vi.x)
+            in = !in;
+          const Vec2 e = vj - vi;
+          const real s = std::clamp(dot(p - vi, e) / norm2(e), 0.0, 1.0);
+          gap = std::min(gap, norm(p - (vi + s * e)));
+        }
+        return in && gap > tol;
+      }
+    }
+    return false;
+  }
+
+  /// Length of the boundary.
+  real perimeter() const {
+    const BodySpec& b = *body;
+    switch (b.shape) {
+      case BodyShape::Circle:
+        return 2 * M_PI * b.radius;
+      case BodyShape::Ellipse:  // Ramanujan's approximation (only sets the sampling density)
+        return M_PI * (3 * (b.semi_axes.x + b.semi_axes.y) -
+                       std::sqrt((3 * b.semi_axes.x + b.semi_axes.y) * (b.semi_axes.x + 3 * b.semi_axes.y)));
+      case BodyShape::HalfDisc:
+        return (M_PI + 2) * b.radius;
+      case BodyShape::Polygon: {
+        real L = 0;
+        for (std::size_t i = 0; i < verts.size(); ++i) L += norm(verts[(i + 1) % verts.size()] - verts[i]);
+        return L;
+      }
+    }
+    return 0;
+  }
+
+  /// About n points on the boundary (world coordinates), corners included.
+  std::vector<Vec2> boundary(std::size_t n) const {
+    const BodySpec& b = *body;
+    std::vector<Vec2> out;
+    const auto world = [&](Vec2 q) { return center + rotate(q, cs, sn); };
+    switch (b.shape) {
+      case BodyShape::Circle:
+      case BodyShape::Ellipse: {
+        const real a = b.shape == BodyShape::Circle ? b.radius : b.semi_axes.x;
+        const real e = b.shape == BodyShape::Circle ? b.radius : b.semi_axes.y;
+        for (std::size_t i = 0; i < n; ++i) {
+          const real t = 2 * M_PI * static_cast<real>(i) / static_cast<real>(n);
+          out.push_back(world({a * std::cos(t), e * std::sin(t)}));
+        }
+        break;
+      }
+      case BodyShape::HalfDisc: {
+        const real R = b.radius;
+        const std::size_t arc = std::max<std::size_t>(2, static_cast<std::size_t>(n * M_PI / (M_PI + 2)));
+        for (std::size_t i = 0; i <= arc; ++i) {
+          const real t = -0.5 * M_PI + M_PI * static_cast<real>(i) / static_cast<real>(arc);
+          out.push_back(world({R * std::cos(t), R * std::sin(t)}));
+        }
+        const std::size_t flat = std::max<std::size_t>(2, n - arc);
+        for (std::size_t i = 1; i < flat; ++i)
+          out.push_back(world({0, R - 2 * R * static_cast<real>(i) / static_cast<real>(flat)}));
+        break;
+      }
+      case BodyShape::Polygon: {
+        const real L = perimeter();
+        for (std::size_t i = 0; i < verts.size(); ++i) {
+          const Vec2 p = verts[i], q = verts[(i + 1) % verts.size()];
+          const auto parts =
+              std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(n * norm(q - p) / L)));
+          for (std::size_t j = 0; j < parts; ++j)
+            out.push_back(p + (static_cast<real>(j) / static_cast<real>(parts)) * (q - p));
+        }
+        break;
+      }
+    }
+    return out;
+  }
+};
+
+/// Bodies lie inside the domain box along non-periodic axes; only a half_disc may touch its edge
+/// (it is meant to sit on a wall with its flat side).
+void check_bodies_in_domain(const Case& c, const LoadContext& ctx) {
+  const real tol = 1e-6 * c.d0;
+  const bool periodic[2] = {c.periodic_x, c.periodic_y};
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    const BodySpec& b = c.bodies[k];
+    const Outline o(b);
+    const bool may_touch = b.shape == BodyShape::HalfDisc;
+    for (int axis = 0; axis < 2; ++axis) {
+      if (periodic[axis]) continue;
+      const char name = axis == 0 ? 'x' : 'y';
+      const real lo = axis == 0 ? o.lo.x : o.lo.y, hi = axis == 0 ? o.hi.x : o.hi.y;
+      const real min = axis == 0 ? c.domain_min.x : c.domain_min.y;
+      const real max = axis == 0 ? c.domain_max.x : c.domain_max.y;
+      for (const auto& [reach, edge, below] : {std::tuple{lo, min, true}, std::tuple{hi, max, false}}) {
+        const real outside = below ? edge - reach : reach - edge;  // > 0: beyond the edge
+        if (outside > tol)
+          throw ctx.error(
+              place_key(c, k),
+              fmt::format("{} lies outside the domain: it reaches {} = {:.9g} m, beyond the domain "
+                          "edge {} = {:.9g} m",
+                          body_text(b), name, reach, name, edge));
+        if (outside >= -tol && !may_touch)
+          throw ctx.error(
+              place_key(c, k),
+              fmt::format("{} touches the domain edge {} = {:.9g} m: leave fluid between them (only a "
+                          "half_disc may sit on a domain edge)",
+                          body_text(b), name, edge));
+      }
+    }
+  }
+}
+
+/// Bodies must not overlap at t = 0, also across periodic boundaries: bounding circles as a
+/// quick reject, circles exactly, other shapes by points sampled densely on both boundaries
+/// (one inside the other also counts).
+void check_body_overlap(const Case& c, const LoadContext& ctx) {
+  const real tol = 1e-6 * c.d0;
+  const Vec2 span = c.domain_max - c.domain_min;
+  std::vector<Vec2> shifts;
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      if ((i == 0 || c.periodic_x) && (j == 0 || c.periodic_y)) shifts.push_back({i * span.x, j * span.y});
+  std::vector<Outline> outlines;
+  for (const BodySpec& b : c.bodies) outlines.emplace_back(b);
+  // Samples: 2000 per boundary, more for large bodies (at most 0.05 d0 apart, up to 100000).
+  const auto samples = [&](const Outline& o) {
+    real n = o.perimeter() / (0.05 * c.d0);
+    if (!(n > 2000)) n = 2000;  // also for a non-finite perimeter
+    return o.boundary(static_cast<std::size_t>(std::min(n, 100000.0)));
+  };
+  for (std::size_t j = 0; j < outlines.size(); ++j) {
+    for (std::size_t i = 0; i <= j; ++i) {
+      const Outline &A = outlines[i], &B = outlines[j];
+      for (const Vec2 shift : shifts) {  // B is moved by `shift`
+        const bool self = i == j;
+        if (self && shift.x == 0 && shift.y == 0) continue;
+        const real d = norm(B.center + shift - A.center);
+        if (d >= A.bound + B.bound - tol) continue;
+        bool overlap = false;
+        if (A.body->shape == BodyShape::Circle && B.body->shape == BodyShape::Circle) {
+          overlap = d < A.body->radius + B.body->radius - tol;
+        } else {
+          for (const Vec2 p : samples(A))
+            if ((overlap = B.contains(p - shift, tol))) break;
+          if (!overlap)
+            for (const Vec2 p : samples(B))
+              if ((overlap = A.contains(p + shift, tol))) break;
+        }
+        if (!overlap) continue;
+        const bool across = shift.x != 0 || shift.y != 0;
+        if (self)
+          throw ctx.error(place_key(c, j), fmt::format("{} overlaps its own periodic image: it is wider than "
+                                                       "the periodic domain",
+                                                       body_text(*B.body)));
+        throw ctx.error(place_key(c, j),
+                        fmt::format("{} overlaps {} (body[{}]) at t = 0{}", body_text(*B.body),
+                                    body_text(*A.body), i, across ? " across the periodic boundary" : ""));
+      }
+    }
+  }
+}
+
 using CrossCheck = void (*)(const Case&, const LoadContext&);
 
-/// Run in this order (later checks may rely on earlier ones, e.g. walls on a valid domain).
-constexpr CrossCheck kChecks[] = {check_domain, check_periodic_width, check_walls};
+/// Run in this order (later checks may rely on earlier ones, e.g. walls on a valid domain, the
+/// geometric body checks on valid polygons).
+constexpr CrossCheck kChecks[] = {check_domain,           check_periodic_width, check_walls,
+                                  check_unused_keys,      check_polygons,       check_density,
+                                  check_schedules,        check_fixed_bodies,   check_body_sizes,
+                                  check_bodies_in_domain, check_body_overlap};
 
 }  // namespace
 

@@ -40,5 +40,16 @@ CaseError LoadContext::error(const std::string& key, const std::string& message)
   return CaseError(file, 0, key, message);
 }
 
+CaseError LoadContext::error_at(const std::string& key, int line, const std::string& message) const {
+  const CaseError located = error(key, message);
+  if (line <= 0 || located.file() != file) return located;  // overridden, or no better line
+  return CaseError(file, line, key, message);
+}
+
+int LoadContext::item_line(const std::string& key, std::size_t i) const {
+  const auto it = lines.find(fmt::format("{}[{}]", key, i));
+  return it == lines.end() ? 0 : it->second;
+}
+
 }  // namespace case_detail
 }  // namespace particula

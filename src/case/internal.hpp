@@ -30,6 +30,12 @@ struct LoadContext {
   /// A CaseError located at `key`: "--set" for overridden keys, else the key's line, else the
   /// line of its nearest enclosing table, else 0.
   CaseError error(const std::string& key, const std::string& message) const;
+  /// As error(), but located at `line` (of one item of a list value) when it is known (> 0) and
+  /// the key was not overridden.
+  CaseError error_at(const std::string& key, int line, const std::string& message) const;
+  /// Line of item `i` of the list value of `key` ("body[0].vertices"), 0 if unknown. The walk
+  /// over the document records them as "body[0].vertices[2]".
+  int item_line(const std::string& key, std::size_t i) const;
 };
 
 /// The concrete key of a schema key for element `index` ("wall[].from", 2 -> "wall[2].from").
@@ -49,13 +55,17 @@ bool is_array_section(std::string_view prefix);
 std::string unknown_key_message(const std::string& concrete);
 
 /// Converts and checks one TOML node against a row. Returns "" and sets `out` on success, or
-/// an error message (wrong type, out of range, not a choice, bad name).
-std::string convert_node(const toml::node& node, const KeySpec& spec, Value& out);
+/// an error message (wrong type, out of range, not a choice, bad name). For a problem with one
+/// item of a list value, `element_line` (if given) receives the item's line.
+std::string convert_node(const toml::node& node, const KeySpec& spec, Value& out,
+                         int* element_line = nullptr);
+/// True for value types that are lists of items (Vec2List, Real4Table).
+inline bool is_list_type(ValueType t) { return t == ValueType::Vec2List || t == ValueType::Real4Table; }
 
 /// Applies --set overrides to the parsed document (see load_case).
 void apply_overrides(toml::table& root, const std::vector<std::string>& overrides, LoadContext& ctx);
 
-/// Consistency checks between keys (domain, walls, periodic width, ...); throw CaseError.
+/// Consistency checks between keys (domain, walls, periodic width, bodies, ...); throw CaseError.
 void run_cross_checks(const Case& c, const LoadContext& ctx);
 
 }  // namespace particula::case_detail

@@ -93,7 +93,13 @@ void walk_table(const toml::table& t, const std::string& schema_prefix, const st
     if (!case_detail::plain_component(name))  // a quoted key such as "fluid.c": located by its own line
       throw CaseError(ctx.file, line, concrete, "not a valid key name (letters, digits, '_' and '-' only)");
     ctx.lines.emplace(concrete, line);
-    if (find_key(schema)) continue;  // a value: checked when its row is read
+    if (const KeySpec* spec = find_key(schema)) {  // a value: checked when its row is read
+      const auto* items = case_detail::is_list_type(spec->type) ? node->as_array() : nullptr;
+      for (std::size_t i = 0; items && i < items->size(); ++i)  // lines of list items, for messages
+        ctx.lines.emplace(fmt::format("{}[{}]", concrete, i),
+                          static_cast<int>(items->get(i)->source().begin.line));
+      continue;
+    }
     if (case_detail::is_array_section(schema)) {
       walk_array(*node, schema, concrete, ctx);
     } else if (case_detail::is_table_section(schema)) {
@@ -136,14 +142,22 @@ void read_key(const toml::table& root, const KeySpec& spec, std::size_t index, C
   const std::string key = case_detail::concrete_key(spec.key, index);
   if (const toml::node* node = find_node(root, spec, index)) {
     Value v;
-    if (const std::string problem = case_detail::convert_node(*node, spec, v); !problem.empty())
-      throw ctx.error(key, problem);
-    ctx.given.insert(key);
+    int item_line = 0;
+    if (const std::string problem = case_detail::convert_node(*node, spec, v, &item_line); !problem.empty())
+      throw ctx.error_at(key, item_line, problem);
+    ctx.given.insert(key);  // a key given where it is not used is reported by the cross checks
     spec.bind.set(c, index, v);
+  } else if (!spec.used_for(c, index)) {
+    return;  // e.g. body[].radius of an ellipse: left at the default of case.hpp
   } else if (spec.need == Need::Required) {
     const std::string unit = spec.unit.empty() || spec.unit == "-" ? "" : ", " + spec.unit;
-    throw ctx.error(key,
-                    fmt::format("missing required key ({}{}): {}", type_name(spec.type), unit, spec.meaning));
+    std::string why;
+    if (spec.used_when) {
+      const KeySpec* decider = find_key(spec.used_when->key);
+      why = fmt::format(" for {} '{}'", decider->leaf(), std::get<std::string>(*decider->bind.get(c, index)));
+    }
+    throw ctx.error(
+        key, fmt::format("missing required key{} ({}{}): {}", why, type_name(spec.type), unit, spec.meaning));
   } else if (spec.need == Need::Default) {
     spec.bind.set(c, index, spec.default_at(index));
   }

@@ -19,11 +19,19 @@ A case file is TOML. Rules that hold for every key:
 - Unknown keys are errors; the message suggests the nearest known key.
 - A `real` also accepts a TOML integer (`1` reads as `1.0`); an `integer` key rejects a float.
   `nan` and `inf` are rejected. `vec2` is `[x, y]` of reals, `bool2` is `[x, y]` of booleans.
-- Ranges: `[a, b]` includes its ends, `(a, b)` excludes them.
+- `vec2 list` is an array of points `[[x0, y0], [x1, y1], ...]`; `real4 table` is an array of
+  rows of four reals `[[a, b, c, d], ...]` whose columns are named in the Type column. Both may
+  span several lines (one point or row per line).
+- Ranges: `[a, b]` includes its ends, `(a, b)` excludes them; the range of a `vec2` applies to
+  each component.
+- Some members of `[[body]]` are used only by some shapes or motions (Default column: "required
+  for shape circle, half_disc", "only for motion prescribed"); giving one for another shape or
+  motion is an error.
 - On the command line, `--set key=value` overrides any key before the checks; the value is
   TOML (`--set fluid.gravity=[0,-9.81]`), and strings and choices also take a bare word
   (`--set numerics.laplacian=morris`). Members of arrays of tables are addressed by index from
-  0: `--set probe.0.points=81`, `--set wall.1.velocity=[1e-5,0]`.
+  0: `--set probe.0.points=81`, `--set wall.1.velocity=[1e-5,0]`,
+  `--set 'body.0.vertices=[[0,0],[1e-3,0],[0,1e-3]]'`.
 - The run directory gets `case.toml`, the fully resolved case (every key, defaults filled in;
   viscosity written as `fluid.nu`).
 
@@ -59,6 +67,76 @@ from = [0.0, 1e-3]
 to = [1e-3, 1e-3]
 velocity = [-1e-3, 0.0]
 ```
+
+A case with bodies: an ellipse falling onto a half-disc obstacle that sits on the left wall, and a
+square paddle turned by a prescribed schedule. The keys of each body depend on its shape:
+`center` and `radius` (circle, half_disc), `center` and `semi_axes` (ellipse), `vertices`
+(polygon).
+
+```toml
+name = "obstacle"
+
+[domain]
+min = [0.0, 0.0]
+max = [0.02, 0.06]
+
+[resolution]
+d0 = 1e-4
+
+[fluid]
+mu = 0.01
+c = 0.5
+gravity = [0.0, -9.81]
+
+[time]
+end = 2.0
+
+[output]
+interval = 0.01
+
+[collision]
+stiffness = 1.5e6
+
+[[wall]]
+from = [0.0, 0.0]
+to = [0.02, 0.0]
+
+[[wall]]
+from = [0.02, 0.0]
+to = [0.02, 0.06]
+
+[[wall]]
+from = [0.02, 0.06]
+to = [0.0, 0.06]
+
+[[wall]]
+from = [0.0, 0.06]
+to = [0.0, 0.0]
+
+[[body]]
+name = "ellipse"
+shape = "ellipse"
+center = [0.01, 0.054]
+semi_axes = [0.002, 0.001]
+density = 1100
+
+[[body]]
+name = "obstacle"
+shape = "half_disc"
+center = [0.0, 0.04]
+radius = 0.01
+motion = "fixed"
+
+[[body]]
+name = "paddle"
+shape = "polygon"
+vertices = [[0.014, 0.01], [0.018, 0.01], [0.018, 0.014], [0.014, 0.014]]
+motion = "prescribed"
+schedule = [
+  [0.0, 0.0, 0.0, 0.0],
+  [0.5, 0.0, 0.0, 2.0],
+]
+```
 )";
 
 /// Escapes what breaks a markdown table cell ('|') or reads as HTML ('<' outside code spans).
@@ -76,6 +154,9 @@ std::string cell(const std::string& s) {
 std::string code(const std::string& s) { return s.empty() ? "" : "`" + s + "`"; }
 
 std::string type_cell(const KeySpec& s) {
+  if (s.type == ValueType::Real4Table)
+    return fmt::format("{}: rows {}", type_name(s.type),
+                       code(fmt::format("[{}]", fmt::join(s.columns, ", "))));
   if (s.type == ValueType::Choice) {
     std::string list;
     for (const std::string& c : s.choices) list += (list.empty() ? "" : " \\| ") + code(c);
@@ -86,6 +167,9 @@ std::string type_cell(const KeySpec& s) {
 
 std::string range_cell(const KeySpec& s) {
   if (s.identifier) return code("[A-Za-z0-9_-]+") + (s.unique ? ", unique" : "");
+  if (s.type == ValueType::Vec2List) return fmt::format("at least {} points", s.min_items);
+  if (s.type == ValueType::Real4Table) return fmt::format("at least {} rows", s.min_items);
+  if (s.type == ValueType::Vec2 && !s.range.text().empty()) return code(s.range.text()) + " each";
   return code(s.range.text());
 }
 

@@ -11,7 +11,7 @@ namespace {
 std::string key_lines(const Case& c, const std::string& section, std::size_t index) {
   std::string out;
   for (const KeySpec& spec : case_schema()) {
-    if (spec.section() != section) continue;
+    if (spec.section() != section || !spec.used_for(c, index)) continue;
     if (const std::optional<Value> v = spec.bind.get(c, index))
       out += fmt::format("{} = {}\n", spec.leaf(), format_toml_value(*v));
   }

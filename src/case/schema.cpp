@@ -98,6 +98,35 @@ Binding enum_field(E Case::*m, std::vector<std::string> choices) {
           }};
 }
 
+/// An enum member of element `index` of an array of tables (enumerators in the order of `choices`).
+template <class E, class M>
+Binding enum_member(std::vector<E> Case::*array, M E::*m, std::vector<std::string> choices) {
+  return {[array, m, choices](Case& c, std::size_t i, const Value& v) {
+            const auto it = std::find(choices.begin(), choices.end(), std::get<std::string>(v));
+            (c.*array).at(i).*m = static_cast<M>(it - choices.begin());  // the loader checked membership
+          },
+          [array, m, choices](const Case& c, std::size_t i) -> std::optional<Value> {
+            return choices.at(static_cast<std::size_t>((c.*array).at(i).*m));
+          }};
+}
+
+/// body[].schedule: rows [t, vx, vy, omega] <-> MotionKnot; an empty schedule is not written back.
+Binding motion_schedule() {
+  return {[](Case& c, std::size_t i, const Value& v) {
+            std::vector<MotionKnot>& knots = c.bodies.at(i).schedule;
+            knots.clear();
+            for (const Real4& r : std::get<std::vector<Real4>>(v))
+              knots.push_back({r[0], {r[1], r[2]}, r[3]});
+          },
+          [](const Case& c, std::size_t i) -> std::optional<Value> {
+            const std::vector<MotionKnot>& knots = c.bodies.at(i).schedule;
+            if (knots.empty()) return std::nullopt;
+            std::vector<Real4> rows;
+            for (const MotionKnot& k : knots) rows.push_back({k.t, k.velocity.x, k.velocity.y, k.omega});
+            return rows;
+          }};
+}
+
 /// A pair of bool members written as one [x, y] key.
 Binding pair_field(bool Case::*x, bool Case::*y) {
   return {[x, y](Case& c, std::size_t, const Value& v) {
@@ -149,9 +178,29 @@ KeySpec bool_key(std::string key, Def d, std::string meaning, Binding b) {
   return row(std::move(key), ValueType::Bool, "", std::move(d), any(), std::move(meaning), std::move(b));
 }
 
-KeySpec vec2_key(std::string key, std::string unit, Def d, std::string meaning, Binding b) {
-  return row(std::move(key), ValueType::Vec2, std::move(unit), std::move(d), any(), std::move(meaning),
+/// A vec2 key; `r` restricts each component.
+KeySpec vec2_key(std::string key, std::string unit, Def d, std::string meaning, Binding b, Range r = any()) {
+  return row(std::move(key), ValueType::Vec2, std::move(unit), std::move(d), r, std::move(meaning),
              std::move(b));
+}
+
+/// A list of at least `min_points` points [x, y].
+KeySpec vec2_list_key(std::string key, std::string unit, Def d, std::size_t min_points, std::string meaning,
+                      Binding b) {
+  KeySpec s = row(std::move(key), ValueType::Vec2List, std::move(unit), std::move(d), any(),
+                  std::move(meaning), std::move(b));
+  s.min_items = min_points;
+  return s;
+}
+
+/// A table of at least `min_rows` rows of four reals named `columns`; `unit` lists the four units.
+KeySpec real4_table_key(std::string key, std::string unit, Def d, std::vector<std::string> columns,
+                        std::size_t min_rows, std::string meaning, Binding b) {
+  KeySpec s = row(std::move(key), ValueType::Real4Table, std::move(unit), std::move(d), any(),
+                  std::move(meaning), std::move(b));
+  s.columns = std::move(columns);
+  s.min_items = min_rows;
+  return s;
 }
 
 KeySpec bool2_key(std::string key, Def d, std::string meaning, Binding b) {
@@ -178,7 +227,24 @@ KeySpec choice_key(std::string key, std::vector<std::string> choices, Def d, std
   return s;
 }
 
+/// A choice stored in an enum member of an array element (enumerators in the order of `choices`).
+template <class E, class M>
+KeySpec choice_member(std::string key, std::vector<std::string> choices, Def d, std::string meaning,
+                      std::vector<E> Case::*array, M E::*m) {
+  KeySpec s = row(std::move(key), ValueType::Choice, "", std::move(d), any(), std::move(meaning),
+                  enum_member(array, m, choices));
+  s.choices = std::move(choices);
+  return s;
+}
+
+/// The row `s`, used only where the choice member `key` of the same element is one of `values`.
+KeySpec used_when(KeySpec s, std::string key, std::vector<std::string> values) {
+  s.used_when = UsedWhen{std::move(key), std::move(values)};
+  return s;
+}
+
 Value wall_name(std::size_t k) { return "wall" + std::to_string(k); }
+Value body_name(std::size_t k) { return "body" + std::to_string(k); }
 
 // ---------------------------------------------------------------------------------------------
 // THE TABLE.
@@ -187,6 +253,8 @@ std::vector<KeySpec> make_schema() {
   const Vec2 zero{0, 0};
   const auto W = &Case::walls;
   const auto P = &Case::probes;
+  const auto B = &Case::bodies;
+  const std::string shape = "body[].shape", motion = "body[].motion";
   return {
       // top level
       string_key("name", required(), "Name of the case; the default run directory is `runs/<name>`.",
@@ -289,6 +357,14 @@ std::vector<KeySpec> make_schema() {
                  "profile error (start-up channel flows along x between walls at domain.min.y and "
                  "domain.max.y).",
                  &Case::exact),
+      // [collision]
+      real_key("collision.stiffness", "N/m^4", def(0.0, "0 (no repulsion)"), ge(0),
+               "Stiffness k of the solid-solid repulsion of P.38 (force per unit depth), between two bodies "
+               "and between a body and its mirror image in a wall.",
+               field(&Case::collision_stiffness)),
+      real_key("collision.range", "m", def(0.0, "0 (= 3 d0)"), ge(0),
+               "Range eps of the repulsion: it acts where the gap between two surfaces is below eps.",
+               field(&Case::collision_range)),
       // [[wall]]
       string_key("wall[].name", per_index(wall_name, "wall<k> (k = index from 0)"),
                  "Name of the wall in output and messages.", member(W, &WallSpec::name), /*name=*/true),
@@ -308,6 +384,61 @@ std::vector<KeySpec> make_schema() {
               "Number of equally spaced points, both ends included.", member(P, &ProbeSpec::points)),
       real_key("probe[].interval", "s", required(), gt(0), "Time between probe outputs.",
                member(P, &ProbeSpec::interval)),
+      // [[body]]
+      string_key("body[].name", per_index(body_name, "body<k> (k = index from 0)"),
+                 "Name of the body in output and messages.", member(B, &BodySpec::name), /*name=*/true,
+                 /*unique=*/true),
+      choice_member("body[].shape", {"circle", "ellipse", "polygon", "half_disc"}, required(),
+                    "Shape of the body; each shape has its own keys (center, radius, semi_axes, vertices).",
+                    B, &BodySpec::shape),
+      used_when(
+          vec2_key("body[].center", "m", required(),
+                   "Position at t = 0: the centre of a circle or ellipse, or the centre of the full disc "
+                   "of a half_disc (the middle of its flat side).",
+                   member(B, &BodySpec::center)),
+          shape, {"circle", "ellipse", "half_disc"}),
+      used_when(real_key("body[].radius", "m", required(), gt(0), "Radius of a circle or half_disc.",
+                         member(B, &BodySpec::radius)),
+                shape, {"circle", "half_disc"}),
+      used_when(vec2_key("body[].semi_axes", "m", required(),
+                         "Semi-axes [a, b] of an ellipse, a along the body x axis (horizontal at angle 0).",
+                         member(B, &BodySpec::semi_axes), gt(0)),
+                shape, {"ellipse"}),
+      used_when(vec2_list_key("body[].vertices", "m", required(), 3,
+                              "Polygon vertices [[x, y], ...] in world coordinates at t = 0, in either "
+                              "orientation and not self-intersecting; a non-zero angle rotates them about "
+                              "their area centroid.",
+                              member(B, &BodySpec::vertices)),
+                shape, {"polygon"}),
+      real_key("body[].angle", "rad", def(0.0), any(),
+               "Orientation at t = 0, counter-clockwise from the body frame (a half_disc's round side faces "
+               "+x at angle 0).",
+               member(B, &BodySpec::angle)),
+      real_key("body[].density", "kg/m^3", def(0.0, "0 (not used); required (> 0) for motion free"), ge(0),
+               "Density of the solid, which gives a free body its mass and moment of inertia; a free body "
+               "needs a density > 0.",
+               member(B, &BodySpec::density)),
+      choice_member("body[].motion", {"free", "fixed", "prescribed"}, def(std::string{"free"}),
+                    "How the body moves: under the forces on it (free), not at all (fixed), or with a given "
+                    "velocity (prescribed).",
+                    B, &BodySpec::motion),
+      vec2_key("body[].velocity", "m/s", def(zero),
+               "Initial velocity of a free body, or the constant velocity of a prescribed body without a "
+               "schedule.",
+               member(B, &BodySpec::velocity)),
+      real_key("body[].omega", "rad/s", def(0.0), any(),
+               "Initial angular velocity (counter-clockwise) of a free body, or the constant one of a "
+               "prescribed body without a schedule.",
+               member(B, &BodySpec::omega)),
+      used_when(
+          real4_table_key("body[].schedule", "s, m/s, m/s, rad/s",
+                          def(std::vector<Real4>{}, "none (constant velocity and omega)"),
+                          {"t", "vx", "vy", "omega"}, 2,
+                          "Prescribed velocity and angular velocity, linear in time between rows "
+                          "[t, vx, vy, omega] (t strictly increasing, the first row at t <= 0, the last "
+                          "row held after its time); replaces velocity and omega.",
+                          motion_schedule()),
+          motion, {"prescribed"}),
   };
 }
 
@@ -334,10 +465,17 @@ std::vector<SectionSpec> make_sections() {
       table_section("output", "What is written to the run directory, and how often."),
       table_section("guard", "Bounds that stop a run that is blowing up."),
       table_section("validation", "Comparison with an exact solution."),
+      table_section("collision",
+                    "Repulsion that keeps bodies apart from each other and from walls (P.38, generalised to "
+                    "the closest-surface distance)."),
       array_section("wall", &Case::walls,
                     "Straight wall segments, one [[wall]] table each; list a closed box counter-clockwise."),
       array_section("probe", &Case::probes,
                     "Line probes, one [[probe]] table each: fields interpolated along a segment."),
+      array_section("body", &Case::bodies,
+                    "Rigid bodies, one [[body]] table each: free, fixed or with prescribed motion. The keys "
+                    "marked \"for shape\" or \"for motion\" are used by those shapes or motions only, and "
+                    "giving them for another is an error."),
   };
 }
 
@@ -363,6 +501,15 @@ bool KeySpec::in_array() const { return key.find("[]") != std::string::npos; }
 
 Value KeySpec::default_at(std::size_t index) const {
   return default_for ? default_for(index) : default_value;
+}
+
+bool KeySpec::used_for(const Case& c, std::size_t index) const {
+  if (!used_when) return true;
+  const KeySpec* decider = find_key(used_when->key);
+  const std::optional<Value> v = decider ? decider->bind.get(c, index) : std::nullopt;
+  const auto* choice = v ? std::get_if<std::string>(&*v) : nullptr;
+  return choice &&
+         std::find(used_when->values.begin(), used_when->values.end(), *choice) != used_when->values.end();
 }
 
 const std::vector<KeySpec>& case_schema() {

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "internal.hpp"
 
@@ -46,11 +47,18 @@ std::string type_name(ValueType type) {
       return "choice";
     case ValueType::Bool2:
       return "bool2";
+    case ValueType::Vec2List:
+      return "vec2 list";
+    case ValueType::Real4Table:
+      return "real4 table";
   }
   return "?";
 }
 
 namespace {
+
+/// Lists (vec2 list, real4 table) longer than this are written one item per line.
+constexpr std::size_t kItemsOnOneLine = 4;
 
 /// A real as TOML with round-trip precision; always recognisable as a float ("1000.0").
 std::string format_real(real x) {
@@ -106,14 +114,35 @@ std::string format_toml_value(const Value& value) {
     std::string operator()(const Bool2& b) const {
       return fmt::format("[{}, {}]", b[0] ? "true" : "false", b[1] ? "true" : "false");
     }
+    std::string operator()(const std::vector<Vec2>& points) const {
+      std::vector<std::string> items;
+      for (const Vec2& p : points) items.push_back((*this)(p));
+      return list(items);
+    }
+    std::string operator()(const std::vector<Real4>& rows) const {
+      std::vector<std::string> items;
+      for (const Real4& r : rows)
+        items.push_back(fmt::format("[{}, {}, {}, {}]", format_real(r[0]), format_real(r[1]),
+                                    format_real(r[2]), format_real(r[3])));
+      return list(items);
+    }
+    /// A TOML array of `items`: on one line when short, else one item per line.
+    static std::string list(const std::vector<std::string>& items) {
+      if (items.size() <= kItemsOnOneLine) return fmt::format("[{}]", fmt::join(items, ", "));
+      return fmt::format("[\n  {},\n]", fmt::join(items, ",\n  "));
+    }
   };
   return std::visit(Visitor{}, value);
 }
 
 std::string default_text(const KeySpec& spec) {
+  std::string where;  // "shape circle, half_disc" for members used by some choices only
+  if (spec.used_when)
+    where = fmt::format("{} {}", spec.used_when->key.substr(spec.used_when->key.rfind('.') + 1),
+                        fmt::join(spec.used_when->values, ", "));
   switch (spec.need) {
     case Need::Required:
-      return "required";
+      return where.empty() ? "required" : "required for " + where;
     case Need::OneOf: {
       std::string keys;
       for (const KeySpec& s : case_schema())
@@ -123,7 +152,9 @@ std::string default_text(const KeySpec& spec) {
     case Need::Default:
       break;
   }
-  return spec.default_doc.empty() ? format_toml_value(spec.default_value) : spec.default_doc;
+  const std::string text =
+      spec.default_doc.empty() ? format_toml_value(spec.default_value) : spec.default_doc;
+  return where.empty() ? text : fmt::format("{}; only for {}", text, where);
 }
 
 namespace case_detail {
@@ -226,6 +257,11 @@ std::string expected(const KeySpec& spec) {
       return "an array of two real numbers [x, y]";
     case ValueType::Bool2:
       return "an array of two booleans [x, y]";
+    case ValueType::Vec2List:
+      return fmt::format("an array of at least {} points [x, y]", spec.min_items);
+    case ValueType::Real4Table:
+      return fmt::format("an array of at least {} rows [{}] of real numbers", spec.min_items,
+                         fmt::join(spec.columns, ", "));
   }
   return "?";
 }
@@ -233,6 +269,9 @@ std::string expected(const KeySpec& spec) {
 std::string wrong_type(const toml::node& n, const KeySpec& spec) {
   return fmt::format("wrong type: expected {}, got {}", expected(spec), describe(n));
 }
+
+/// 1-based line of a node in its document (0 if unknown).
+int line_of(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
 
 /// " m" after a range, nothing for dimensionless or unit-less keys.
 std::string unit_suffix(const KeySpec& spec) {
@@ -275,14 +314,83 @@ std::string convert_int(const toml::node& n, const KeySpec& spec, Value& out) {
   return "";
 }
 
+/// An array of exactly `n` reals (TOML integers or floats) into `x`.
+bool as_reals(const toml::node& node, real* x, std::size_t n) {
+  const auto* a = node.as_array();
+  if (!a || a->size() != n) return false;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!as_real(*a->get(i), x[i])) return false;
+  return true;
+}
+
 std::string convert_vec2(const toml::node& n, const KeySpec& spec, Value& out) {
-  const auto* a = n.as_array();
-  Vec2 v;
-  if (!a || a->size() != 2 || !as_real(*a->get(0), v.x) || !as_real(*a->get(1), v.y))
-    return wrong_type(n, spec);
-  if (!std::isfinite(v.x) || !std::isfinite(v.y))
-    return out_of_range(fmt::format("[{}, {}]", v.x, v.y), spec, false);
+  real x[2];
+  if (!as_reals(n, x, 2)) return wrong_type(n, spec);
+  const Vec2 v{x[0], x[1]};
+  const bool finite = std::isfinite(v.x) && std::isfinite(v.y);
+  if (!finite || !spec.range.contains(v.x) || !spec.range.contains(v.y)) {
+    const std::string value = fmt::format("[{}, {}]", v.x, v.y);
+    if (spec.range.text().empty()) return out_of_range(value, spec, finite);
+    return fmt::format("value {} is out of range: each component must be {}{}{}", value,
+                       finite ? "" : "a finite number ", spec.range.text(), unit_suffix(spec));
+  }
   out = v;
+  return "";
+}
+
+/// The elements of a Vec2List or Real4Table value: an array of at least spec.min_items items.
+const toml::array* list_of(const toml::node& n, const KeySpec& spec, std::string& problem) {
+  const auto* a = n.as_array();
+  if (!a || (!a->empty() && !a->get(0)->is_array()))  // e.g. one point [x, y] instead of a list
+    problem = wrong_type(n, spec);
+  else if (a->size() < spec.min_items)
+    problem = fmt::format("too few {}: expected {}, got {}",
+                          spec.type == ValueType::Vec2List ? "points" : "rows", expected(spec), a->size());
+  return problem.empty() ? a : nullptr;
+}
+
+std::string convert_vec2_list(const toml::node& n, const KeySpec& spec, Value& out, int& line) {
+  std::string problem;
+  const toml::array* a = list_of(n, spec, problem);
+  if (!a) return problem;
+  std::vector<Vec2> points;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node& e = *a->get(i);
+    real x[2];
+    if (!as_reals(e, x, 2)) {
+      line = line_of(e);
+      return fmt::format("wrong type: point [{}] must be [x, y] of two real numbers, got {}", i, describe(e));
+    }
+    if (!std::isfinite(x[0]) || !std::isfinite(x[1])) {
+      line = line_of(e);
+      return fmt::format("point [{}] = [{}, {}] is out of range: must be finite", i, x[0], x[1]);
+    }
+    points.push_back({x[0], x[1]});
+  }
+  out = std::move(points);
+  return "";
+}
+
+std::string convert_real4_table(const toml::node& n, const KeySpec& spec, Value& out, int& line) {
+  std::string problem;
+  const toml::array* a = list_of(n, spec, problem);
+  if (!a) return problem;
+  std::vector<Real4> rows;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node& e = *a->get(i);
+    Real4 r{};
+    if (!as_reals(e, r.data(), 4)) {
+      line = line_of(e);
+      return fmt::format("wrong type: row [{}] must be [{}] of four real numbers, got {}", i,
+                         fmt::join(spec.columns, ", "), describe(e));
+    }
+    if (!std::all_of(r.begin(), r.end(), [](real x) { return std::isfinite(x); })) {
+      line = line_of(e);
+      return fmt::format("row [{}] = [{}] is out of range: must be finite", i, fmt::join(r, ", "));
+    }
+    rows.push_back(r);
+  }
+  out = std::move(rows);
   return "";
 }
 
@@ -307,9 +415,7 @@ std::string convert_string(const toml::node& n, const KeySpec& spec, Value& out)
   return "";
 }
 
-}  // namespace
-
-std::string convert_node(const toml::node& node, const KeySpec& spec, Value& out) {
+std::string convert_scalar(const toml::node& node, const KeySpec& spec, Value& out) {
   switch (spec.type) {
     case ValueType::Real:
       return convert_real(node, spec, out);
@@ -326,8 +432,26 @@ std::string convert_node(const toml::node& node, const KeySpec& spec, Value& out
       return convert_vec2(node, spec, out);
     case ValueType::Bool2:
       return convert_bool2(node, spec, out);
+    case ValueType::Vec2List:
+    case ValueType::Real4Table:
+      break;
   }
   return "unsupported type";
+}
+
+}  // namespace
+
+std::string convert_node(const toml::node& node, const KeySpec& spec, Value& out, int* element_line) {
+  int line = 0;
+  std::string problem;
+  if (spec.type == ValueType::Vec2List)
+    problem = convert_vec2_list(node, spec, out, line);
+  else if (spec.type == ValueType::Real4Table)
+    problem = convert_real4_table(node, spec, out, line);
+  else
+    return convert_scalar(node, spec, out);
+  if (element_line) *element_line = line;
+  return problem;
 }
 
 }  // namespace case_detail

@@ -26,23 +26,28 @@ namespace particula {
 
 /// The value types a key can have.
 enum class ValueType {
-  Real,    // floating point number; a TOML integer is accepted (1 -> 1.0)
-  Int,     // TOML integer only; a float is a type error
-  Bool,    // true / false
-  String,  // any string (optionally restricted to names, see KeySpec::identifier)
-  Vec2,    // array of two reals [x, y]
-  Choice,  // a string among KeySpec::choices
-  Bool2,   // array of two bools [x, y]
+  Real,        // floating point number; a TOML integer is accepted (1 -> 1.0)
+  Int,         // TOML integer only; a float is a type error
+  Bool,        // true / false
+  String,      // any string (optionally restricted to names, see KeySpec::identifier)
+  Vec2,        // array of two reals [x, y]
+  Choice,      // a string among KeySpec::choices
+  Bool2,       // array of two bools [x, y]
+  Vec2List,    // array of points [[x0, y0], [x1, y1], ...] (at least KeySpec::min_items)
+  Real4Table,  // array of rows of four reals [[a, b, c, d], ...] (columns: KeySpec::columns)
 };
 
 using Bool2 = std::array<bool, 2>;
+/// One row of a Real4Table value.
+using Real4 = std::array<real, 4>;
 
 /// A checked value of a key. Real -> real, Int -> int64, Bool -> bool, String and Choice ->
-/// string, Vec2 -> Vec2, Bool2 -> Bool2.
-using Value = std::variant<real, std::int64_t, bool, std::string, Vec2, Bool2>;
+/// string, Vec2 -> Vec2, Bool2 -> Bool2, Vec2List -> vector<Vec2>, Real4Table -> vector<Real4>.
+using Value =
+    std::variant<real, std::int64_t, bool, std::string, Vec2, Bool2, std::vector<Vec2>, std::vector<Real4>>;
 
-/// An allowed interval for Real and Int keys (both bounds optional, each inclusive or not).
-/// Non-finite numbers are never contained.
+/// An allowed interval for Real and Int keys, and for each component of a Vec2 key (both bounds
+/// optional, each inclusive or not). Non-finite numbers are never contained.
 struct Range {
   std::optional<real> lo, hi;
   bool lo_open = false, hi_open = false;
@@ -57,6 +62,15 @@ enum class Need {
   Default,   // optional, with a default value
   Required,  // must be given
   OneOf,     // exactly one key of its `group` must be given
+};
+
+/// A member of an array of tables that is used only for some values of a choice member of the
+/// same element: body[].radius only for body[].shape circle and half_disc. Where it is used the
+/// row's `need` applies (Required: must be given); elsewhere it must not be given (a CaseError
+/// from the cross checks) and it is not written to the resolved case.
+struct UsedWhen {
+  std::string key;                  // the deciding Choice row, earlier in the table ("body[].shape")
+  std::vector<std::string> values;  // its values for which this key is used
 };
 
 /// How a checked value is stored into a Case and read back (for the resolved case).
@@ -77,7 +91,10 @@ struct KeySpec {
   std::function<Value(std::size_t)> default_for;  // optional: default depending on the index
   std::string default_doc;                        // optional doc text for the default
   std::string group;                              // when need == OneOf: shared group label
-  Range range;                                    // Real and Int keys
+  Range range;                                    // Real and Int keys, each component of Vec2
+  std::size_t min_items = 0;                      // Vec2List and Real4Table: fewest points / rows
+  std::vector<std::string> columns;               // Real4Table: names of the four columns
+  std::optional<UsedWhen> used_when;              // members used only for some choices
   std::vector<std::string> choices;               // Choice keys
   bool identifier = false;                        // String: must match [A-Za-z0-9_-]+
   bool unique = false;                            // array member: distinct across elements
@@ -92,6 +109,8 @@ struct KeySpec {
   bool in_array() const;
   /// The default for element `index` (uses default_for when set).
   Value default_at(std::size_t index) const;
+  /// False if `used_when` excludes element `index` of `c` (its deciding choice is elsewhere).
+  bool used_for(const Case& c, std::size_t index) const;
 };
 
 /// A section of the case file: a table ([fluid]) or an array of tables ([[wall]]).
@@ -112,11 +131,12 @@ const KeySpec* find_key(std::string_view key);
 /// The section named `name` ("fluid", "wall"), or nullptr.
 const SectionSpec* find_section(std::string_view name);
 
-/// Short type name for messages and docs: "real", "integer", "vec2", ...
+/// Short type name for messages and docs: "real", "integer", "vec2", "vec2 list", ...
 std::string type_name(ValueType type);
 /// A value written as TOML (reals with round-trip precision, strings quoted and escaped).
 std::string format_toml_value(const Value& value);
-/// The default of a row as documented: "required", "one of fluid.nu / fluid.mu", or the value.
+/// The default of a row as documented: "required", "one of fluid.nu / fluid.mu", or the value;
+/// rows with `used_when` add where they are used ("required for shape circle, half_disc").
 std::string default_text(const KeySpec& spec);
 
 /// The case-file reference (markdown, one table per section) generated from the schema.
