@@ -80,6 +80,11 @@ struct Reporter {
     log.line(text);
     if (!quiet) std::fprintf(stderr, "%s\n", text.c_str());
   }
+  /// Printed even with --quiet.
+  void tell(const std::string& text) {
+    log.line(text);
+    std::fprintf(stderr, "%s\n", text.c_str());
+  }
 };
 
 /// What `run` and `resume` set up for the shared loop.
@@ -146,7 +151,7 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
           "checkpoint ({}) written",
           solver.time(), solver.step_count(), failure->what, failure->position.x, failure->position.y, diag.string());
       progress.finish();
-      rep.log.warn(msg);
+      rep.log.record("error: " + msg);
       std::fprintf(stderr, "error: %s\n", msg.c_str());
       status = "failed";
       exit_code = 3;
@@ -167,7 +172,8 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
     save_checkpoint(checkpoint_file, s);
   }
   if (exit_code == 130)
-    rep.say(fmt::format("interrupted: checkpoint written; continue with: particula resume {}", s.dir.string()));
+    rep.tell(fmt::format("interrupted at t = {:.9g} s: checkpoint written; continue with: particula resume {}",
+                         solver.time(), s.dir.string()));
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
   const auto& cnt = solver.counters();
