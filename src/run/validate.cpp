@@ -243,7 +243,9 @@ int validate_command(const ValidateOptions& opt) {
         std::fprintf(stderr, "  %s: %s (reference %s, %s): %s\n", c.quantity.c_str(), c.shown.c_str(),
                      c.reference.c_str(), c.tolerance.c_str(), c.pass ? "pass" : "FAIL");
     }
+    const bool interrupted = r.exit_code == 130;
     results.push_back(std::move(r));
+    if (interrupted) break;  // Ctrl-C stops the suite, not only the current run
   }
   const fs::path report = opt.out_dir / "report.md";
   try {
@@ -251,6 +253,10 @@ int validate_command(const ValidateOptions& opt) {
   } catch (const io::IoError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;
+  }
+  if (!results.empty() && results.back().exit_code == 130) {
+    std::fprintf(stderr, "validate: interrupted; partial report in %s\n", report.string().c_str());
+    return 130;
   }
   const bool all = std::all_of(results.begin(), results.end(), [](const EntryResult& r) { return r.pass(); });
   std::fprintf(stderr, "validate: %s; report in %s\n", all ? "all cases pass" : "SOME CASES FAIL",

@@ -57,7 +57,7 @@ struct ValidateOptions {
 };
 
 /// Runs the suite into out_dir/<name>, writes out_dir/report.md; exit 0 when every check
-/// passes, 3 when one fails, 2 on bad input (e.g. an unwritable directory).
+/// passes, 3 when one fails, 2 on bad input (e.g. an unwritable directory), 130 when interrupted.
 int validate_command(const ValidateOptions& options);
 
 }  // namespace particula
