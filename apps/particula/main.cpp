@@ -5,7 +5,9 @@
 #include <exception>
 
 #include "particula/run/info.hpp"
+#include "particula/run/plots.hpp"
 #include "particula/run/runner.hpp"
+#include "particula/run/validate.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"particula: rigid bodies in viscous flow, weakly compressible SPH (Hashemi, Fatehi & Manzari 2012)"};
@@ -14,6 +16,7 @@ int main(int argc, char** argv) {
   particula::RunOptions run_opt;
   std::string run_case;
   std::string backend = "cpu";
+  bool no_plots = false;
   auto* run = app.add_subcommand("run", "Run a case file and write its run directory");
   run->add_option("case", run_case, "Case file (TOML)")->required();
   run->add_option("--out", run_opt.out_dir, "Run directory (default runs/<case name>)");
@@ -21,15 +24,42 @@ int main(int argc, char** argv) {
   run->add_option("--threads", run_opt.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 4096));
   run->add_option("--backend", backend, "Compute backend")->check(CLI::IsMember({"cpu"}));
   run->add_flag("--quiet", run_opt.quiet, "No progress line");
-  bool no_plots = false;
   run->add_flag("--no-plots", no_plots, "Do not draw plots at the end of the run");
   run->add_flag("--overwrite", run_opt.overwrite, "Replace an existing run directory");
 
+  particula::ResumeOptions resume_opt;
+  bool resume_no_plots = false;
+  auto* resume = app.add_subcommand(
+      "resume", "Continue a run from its checkpoint (DIR/checkpoint/state.bin), appending to its outputs");
+  resume->add_option("dir", resume_opt.run_dir, "Run directory")->required();
+  resume->add_option("--set", resume_opt.overrides,
+                     "Override time.end or an output.* key, e.g. --set time.end=3 (repeatable)");
+  resume->add_option("--threads", resume_opt.threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(1, 4096));
+  resume->add_flag("--quiet", resume_opt.quiet, "No progress line");
+  resume->add_flag("--no-plots", resume_no_plots, "Do not draw plots at the end of the run");
+
   std::string info_case;
   std::vector<std::string> info_overrides;
+  bool info_no_timing = false;
   auto* info = app.add_subcommand("info", "Particle counts, time step, steps, memory and wall-time estimate of a case");
   info->add_option("case", info_case, "Case file (TOML)")->required();
   info->add_option("--set", info_overrides, "Override a case key (repeatable)");
+  info->add_flag("--no-timing", info_no_timing, "Do not time a few steps (no wall-time estimate)");
+
+  particula::ValidateOptions validate_opt;
+  auto* validate = app.add_subcommand(
+      "validate", "Run the validation cases against their exact solutions and write DIR/report.md (exit 3 on a fail)");
+  validate->add_flag("--quick", validate_opt.quick, "The shipped (coarse) resolution instead of twice as fine");
+  validate->add_option("--out", validate_opt.out_dir, "Output directory (default runs/validate)");
+  validate->add_option("--threads", validate_opt.threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(1, 4096));
+  validate->add_option("--case", validate_opt.only, "Run only this validation case (repeatable)");
+  validate->add_flag("--quiet", validate_opt.quiet, "Only the final line");
+
+  std::string plot_dir;
+  auto* plot = app.add_subcommand("plot", "(Re)draw the plots of a run directory into DIR/plots (tools/plot_run.py)");
+  plot->add_option("dir", plot_dir, "Run directory")->required();
 
   try {
     app.parse(argc, argv);
@@ -39,8 +69,12 @@ int main(int argc, char** argv) {
   }
   try {
     run_opt.plots = !no_plots;
+    resume_opt.plots = !resume_no_plots;
     if (*run) return particula::run_command(run_case, run_opt);
-    if (*info) return particula::info_command(info_case, info_overrides);
+    if (*resume) return particula::resume_command(resume_opt);
+    if (*info) return particula::info_command(info_case, info_overrides, !info_no_timing);
+    if (*validate) return particula::validate_command(validate_opt);
+    if (*plot) return particula::plot_command(plot_dir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "internal error: %s\n", e.what());
     return 1;

@@ -7,14 +7,16 @@
 #include <fmt/format.h>
 
 #include "particula/case/load.hpp"
+#include "particula/run/limits.hpp"
 #include "particula/scene/scene.hpp"
 
 namespace particula {
 
-int info_command(const std::filesystem::path& case_file, const std::vector<std::string>& overrides) {
+int info_command(const std::filesystem::path& case_file, const std::vector<std::string>& overrides, bool timing) {
   Case c;
   try {
     c = load_case(case_file, overrides);
+    check_case_size(c);  // before the scene is allocated
   } catch (const CaseError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;
@@ -33,7 +35,7 @@ int info_command(const std::filesystem::path& case_file, const std::vector<std::
   // Time a few steps to estimate the wall time on this machine.
   const auto t0 = std::chrono::steady_clock::now();
   int timed = 0;
-  for (; timed < 5; ++timed)
+  for (; timing && timed < 5; ++timed)
     if (solver.step()) break;
   const double per_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() /
                           std::max(1, timed);
@@ -47,8 +49,9 @@ int info_command(const std::filesystem::path& case_file, const std::vector<std::
   std::printf("initial dt      %.6g s (P.29-P.31, alpha = %g)\n", dt, c.cfl);
   std::printf("steps           about %.0f to t = %g s\n", steps, c.t_end);
   std::printf("memory          about %.1f MiB\n", bytes / (1024.0 * 1024.0));
-  std::printf("wall time       about %s on %d threads (%.3g s per step measured over %d steps)\n",
-              fmt::format("{:.0f} s", steps * per_step).c_str(), omp_get_max_threads(), per_step, timed);
+  if (timing)
+    std::printf("wall time       about %s on %d threads (%.3g s per step measured over %d steps)\n",
+                fmt::format("{:.0f} s", steps * per_step).c_str(), omp_get_max_threads(), per_step, timed);
   return 0;
 }
 

@@ -8,20 +8,36 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fmt/format.h>
+#include <limits>
+#include <memory>
 
+#include "outputs.hpp"
 #include "particula/case/load.hpp"
 #include "particula/io/atomic_file.hpp"
 #include "particula/io/json.hpp"
 #include "particula/io/log.hpp"
+#include "particula/run/checkpoint.hpp"
+#include "particula/run/limits.hpp"
 #include "particula/run/observers.hpp"
+#include "particula/run/plots.hpp"
 #include "particula/scene/scene.hpp"
 
 namespace particula {
 
 namespace {
 
+namespace fs = std::filesystem;
+using run_detail::RunOutputs;
+
 std::atomic<int> g_signal{0};
-extern "C" void on_signal(int sig) { g_signal.store(sig); }
+extern "C" void on_signal(int sig) {
+  // The first signal asks the loop to stop after the current step (outputs and checkpoint
+  // written); a second one stops at once.
+  if (g_signal.exchange(sig) != 0) {
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+  }
+}
 
 /// Installs SIGINT/SIGTERM handlers for the lifetime of a run; the loop checks the flag
 /// between steps, so a step is never left half-done.
@@ -36,11 +52,12 @@ struct SignalGuard {
     std::signal(SIGINT, old_int);
     std::signal(SIGTERM, old_term);
   }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
 };
 
 /// Prepares the run directory: refuses an existing one unless --overwrite (exit 2).
-std::filesystem::path prepare_run_dir(const Case& c, const RunOptions& opt) {
-  namespace fs = std::filesystem;
+fs::path prepare_run_dir(const Case& c, const RunOptions& opt) {
   const fs::path dir = opt.out_dir.empty() ? fs::path("runs") / c.name : opt.out_dir;
   std::error_code ec;
   if (fs::exists(dir, ec)) {
@@ -54,119 +71,64 @@ std::filesystem::path prepare_run_dir(const Case& c, const RunOptions& opt) {
   return dir;
 }
 
-/// Largest step that lands exactly on the next output time or the end time.
-real next_stop(real t, real t_end, real interval) {
-  const real k = std::floor(t / interval + 1e-9) + 1;
-  return std::min(t_end, k * interval);
-}
-
-struct Outputs {
-  std::unique_ptr<SnapshotWriter> snapshots;
-  std::vector<std::unique_ptr<ProbeWriter>> probes;
-  std::unique_ptr<BodyHistoryWriter> bodies;
-  real next_output = 0, next_snapshot = 0;
-  std::vector<real> next_probe;
-  // time of the last write of each stream (bodies, snapshots, probes...), so that the final
-  // state is written once at the end of a run
-  real last_bodies = -1, last_snapshot = -1;
-  std::vector<real> last_probe;
+/// The log file and the messages of a run (echoed to stderr unless quiet).
+struct Reporter {
+  io::RunLog log;
+  bool quiet;
+  Reporter(const fs::path& file, bool q) : log(file, false), quiet(q) {}
+  void say(const std::string& text) {
+    log.line(text);
+    if (!quiet) std::fprintf(stderr, "%s\n", text.c_str());
+  }
+  /// Printed even with --quiet.
+  void tell(const std::string& text) {
+    log.line(text);
+    std::fprintf(stderr, "%s\n", text.c_str());
+  }
 };
 
-/// Runs tools/plot_run.py on the run directory when Debian's matplotlib is available, and says
-/// so when it is not (plots are optional; the data files are complete without them).
-template <class Say>
-void draw_plots(const std::filesystem::path& dir, bool quiet, Say&& say) {
-  const std::filesystem::path script = std::filesystem::path(PARTICULA_SOURCE_DIR) / "tools" / "plot_run.py";
-  const char* python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string probe = fmt::format("{} -c 'import matplotlib' >/dev/null 2>&1", python);
-  if (!std::filesystem::exists(script) || std::system(probe.c_str()) != 0) {
-    say("note: no plots drawn (python3-matplotlib is not installed; scripts/install-deps installs it)");
-    return;
-  }
-  const std::string cmd = fmt::format("{} '{}' '{}' >> '{}' 2>&1", python, script.string(), dir.string(),
-                                      (dir / "log.txt").string());
-  if (std::system(cmd.c_str()) == 0) {
-    if (!quiet) say(fmt::format("plots in {}", (dir / "plots").string()));
-  } else {
-    say("warning: plotting failed (see log.txt); the data files are complete");
-  }
+/// What `run` and `resume` set up for the shared loop.
+struct Session {
+  Case c;
+  fs::path dir;
+  std::unique_ptr<Solver> solver;
+  std::unique_ptr<RunOutputs> outputs;
+  std::size_t n_fluid = 0;
+  bool resumed = false;
+  real t_start = 0;
+};
+
+void save_checkpoint(const fs::path& file, const Session& s) {
+  const Solver& solver = *s.solver;
+  const std::string toml = resolved_case_toml(s.c);
+  const real t = solver.time();
+  const std::int64_t step = solver.step_count();
+  const std::vector<OutputMark> marks = s.outputs->marks();
+  write_checkpoint(file, CheckpointView{toml, t, step, solver.counters(), marks, solver.particles(), solver.groups()});
 }
 
-}  // namespace
-
-int run_command(const std::filesystem::path& case_file, const RunOptions& opt) {
-  Case c;
-  std::filesystem::path dir;
-  try {
-    c = load_case(case_file, opt.overrides);
-    dir = prepare_run_dir(c, opt);
-  } catch (const CaseError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 2;
-  } catch (const io::IoError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 2;
-  }
-  if (opt.threads > 0) omp_set_num_threads(opt.threads);
-
-  io::RunLog log(dir / "log.txt", false);
-  auto say = [&](const std::string& text) {
-    log.line(text);
-    if (!opt.quiet) std::fprintf(stderr, "%s\n", text.c_str());
-  };
-  io::write_file_atomic(dir / "case.toml", resolved_case_toml(c));
-
-  Scene scene = build_scene(c);
-  const std::size_t n_fluid = scene.particles.size() - scene.particles.n_boundary;
-  say(fmt::format("particula: case '{}' from {}, {} particles ({} fluid, {} boundary), {} threads", c.name,
-                  case_file.string(), scene.particles.size(), n_fluid, scene.particles.n_boundary,
-                  omp_get_max_threads()));
-  Solver solver(scene.params, scene.domain, std::move(scene.particles), std::move(scene.groups));
-
-  Outputs out;
-  const real snap_interval = c.snapshot_interval > 0 ? c.snapshot_interval : c.output_interval;
-  if (c.snapshots) out.snapshots = std::make_unique<SnapshotWriter>(dir);
-  for (const auto& p : c.probes) out.probes.push_back(std::make_unique<ProbeWriter>(dir, p, c));
-  out.bodies = std::make_unique<BodyHistoryWriter>(dir);
-
-  const real eps = 1e-9 * c.t_end;
-  // Writes every stream that is due (or, with `force`, every stream not yet written at this time).
-  auto write_outputs = [&](bool force) {
-    const real t = solver.time();
-    if ((force && out.last_bodies < t) || t >= out.next_output - eps) {
-      out.bodies->write(solver);
-      out.last_bodies = t;
-      out.next_output = next_stop(t, 1e300, c.output_interval);
-    }
-    if (out.snapshots && ((force && out.last_snapshot < t) || t >= out.next_snapshot - eps)) {
-      out.snapshots->write(solver);
-      out.last_snapshot = t;
-      out.next_snapshot = next_stop(t, 1e300, snap_interval);
-    }
-    out.next_probe.resize(out.probes.size(), 0);
-    out.last_probe.resize(out.probes.size(), -1);
-    for (std::size_t k = 0; k < out.probes.size(); ++k)
-      if ((force && out.last_probe[k] < t) || t >= out.next_probe[k] - eps) {
-        out.probes[k]->write(solver);
-        out.last_probe[k] = t;
-        out.next_probe[k] = next_stop(t, 1e300, out.probes[k]->spec().interval);
-      }
-  };
-  auto next_event = [&] {
-    real t = std::min({c.t_end, out.next_output, out.snapshots ? out.next_snapshot : 1e300});
-    for (real tp : out.next_probe) t = std::min(t, tp);
-    return t;
-  };
+/// The time loop shared by `run` and `resume`: steps to time.end, writes the outputs on their
+/// schedule and checkpoints every output.checkpoint_interval, stops on a signal (exit 130),
+/// max_steps or a numerical failure (exit 3), then writes the final state, a checkpoint and
+/// summary.json.
+int run_loop(Session& s, Reporter& rep, bool plots) {
+  Solver& solver = *s.solver;
+  const Case& c = s.c;
+  RunOutputs& out = *s.outputs;
+  const fs::path checkpoint_file = checkpoint_path(s.dir);
 
   SignalGuard signals;
   io::ProgressOptions popt;
-  popt.quiet = opt.quiet;
-  io::ProgressLine progress(&log, popt);
+  popt.quiet = rep.quiet;
+  io::ProgressLine progress(&rep.log, popt);
   const auto wall0 = std::chrono::steady_clock::now();
-  write_outputs(true);
+  if (!s.resumed) out.write(solver, true);  // the initial state (a resumed run has it already)
+  const real ci = c.checkpoint_interval;
+  real next_checkpoint = ci > 0 ? run_detail::next_multiple(solver.time(), ci) : std::numeric_limits<real>::infinity();
   std::string status = "completed";
   int exit_code = 0;
   double particle_steps = 0, interactions = 0;
+  const real eps = 1e-9 * c.t_end;
   while (solver.time() < c.t_end - eps) {
     if (c.max_steps > 0 && solver.step_count() >= c.max_steps) {
       status = "max_steps";
@@ -177,28 +139,41 @@ int run_command(const std::filesystem::path& case_file, const RunOptions& opt) {
       exit_code = 130;
       break;
     }
-    const auto failure = solver.step(next_event() - solver.time());
+    const auto failure = solver.step(out.next_event(c.t_end) - solver.time());
     particle_steps += static_cast<double>(solver.particles().size());
     interactions += static_cast<double>(solver.last_pair_count());
     if (failure) {
-      write_outputs(true);
+      out.write(solver, true);
+      const fs::path diag = checkpoint_file.parent_path() / kFailureCheckpoint;
+      save_checkpoint(diag, s);
       const std::string msg = fmt::format(
-          "numerical failure at t = {:.9g} s, step {}: {} at ({:.6g}, {:.6g}); last snapshot written", solver.time(),
-          solver.step_count(), failure->what, failure->position.x, failure->position.y);
+          "numerical failure at t = {:.9g} s, step {}: {} at ({:.6g}, {:.6g}); last snapshot and a diagnostic "
+          "checkpoint ({}) written",
+          solver.time(), solver.step_count(), failure->what, failure->position.x, failure->position.y, diag.string());
       progress.finish();
-      log.warn(msg);
+      rep.log.record("error: " + msg);
       std::fprintf(stderr, "error: %s\n", msg.c_str());
       status = "failed";
       exit_code = 3;
       break;
     }
-    write_outputs(false);
+    out.write(solver, false);
+    if (solver.time() >= next_checkpoint - 1e-9 * ci) {
+      save_checkpoint(checkpoint_file, s);
+      next_checkpoint = run_detail::next_multiple(solver.time(), ci);
+    }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     progress.update(solver.step_count(), solver.time(), c.t_end, solver.last_dt(),
                     wall > 0 ? particle_steps / wall : 0);
   }
   progress.finish();
-  if (exit_code != 3) write_outputs(true);  // the final state (a failure already wrote it)
+  if (exit_code != 3) {  // the final state (a failure already wrote it) and the restartable checkpoint
+    out.write(solver, true);
+    save_checkpoint(checkpoint_file, s);
+  }
+  if (exit_code == 130)
+    rep.tell(fmt::format("interrupted at t = {:.9g} s: checkpoint written; continue with: particula resume {}",
+                         solver.time(), s.dir.string()));
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
   const auto& cnt = solver.counters();
@@ -206,9 +181,10 @@ int run_command(const std::filesystem::path& case_file, const RunOptions& opt) {
   summary.set("case", c.name);
   summary.set("status", status);
   summary.set("particles", static_cast<std::int64_t>(solver.particles().size()));
-  summary.set("fluid_particles", static_cast<std::int64_t>(n_fluid));
+  summary.set("fluid_particles", static_cast<std::int64_t>(s.n_fluid));
   summary.set("steps", solver.step_count());
   summary.set("end_time", solver.time());
+  if (s.resumed) summary.set("resumed_from", s.t_start);
   summary.set("wall_seconds", wall);
   summary.set("threads", static_cast<std::int64_t>(omp_get_max_threads()));
   summary.set("particle_steps_per_second", wall > 0 ? particle_steps / wall : 0.0);
@@ -219,27 +195,137 @@ int run_command(const std::filesystem::path& case_file, const RunOptions& opt) {
   guards.set("wall_pressure_kept", cnt.wall_pressure_kept);
   guards.set("normal_fallback", cnt.normal_fallback);
   summary.set("guard_events", guards);
-  for (const auto& p : out.probes)
+  for (const auto& p : out.probes())
     if (auto e = p->last_error()) summary.set("probe_error_" + p->spec().name, *e);
   const auto particle_error = particle_profile_error(solver, c);
   if (particle_error) summary.set("profile_error", *particle_error);
-  io::write_file_atomic(dir / "summary.json", summary.dump());
+  io::write_file_atomic(s.dir / "summary.json", summary.dump());
 
-  say(fmt::format("{}: t = {:.6g} s after {} steps in {:.2f} s ({:.3g} particle-steps/s on {} threads)", status,
-                  solver.time(), solver.step_count(), wall, wall > 0 ? particle_steps / wall : 0.0,
-                  omp_get_max_threads()));
-  say(fmt::format("guard events: singular B {}, singular Bhat {}, wall pressure kept {}, normal fallback {}",
-                  cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.normal_fallback));
+  rep.say(fmt::format("{}: t = {:.6g} s after {} steps in {:.2f} s ({:.3g} particle-steps/s on {} threads)", status,
+                      solver.time(), solver.step_count(), wall, wall > 0 ? particle_steps / wall : 0.0,
+                      omp_get_max_threads()));
+  rep.say(fmt::format("guard events: singular B {}, singular Bhat {}, wall pressure kept {}, normal fallback {}",
+                      cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.normal_fallback));
   if (particle_error)
-    say(fmt::format("L2 error of the fluid particles' vx against the exact solution: {:.4f} % of the peak speed",
-                    100 * *particle_error));
-  for (const auto& p : out.probes)
+    rep.say(fmt::format("L2 error of the fluid particles' vx against the exact solution: {:.4f} % of the peak speed",
+                        100 * *particle_error));
+  for (const auto& p : out.probes())
     if (auto e = p->last_error())
-      say(fmt::format("probe '{}' (Shepard-interpolated): L2 error of vx {:.4f} % of the peak speed at t = {:.6g} s",
-                      p->spec().name, 100 * *e, solver.time()));
-  if (exit_code == 0 && opt.plots) draw_plots(dir, opt.quiet, say);
-  say(fmt::format("results in {}", dir.string()));
+      rep.say(fmt::format("probe '{}' (Shepard-interpolated): L2 error of vx {:.4f} % of the peak speed at t = {:.6g} s",
+                          p->spec().name, 100 * *e, solver.time()));
+  if (exit_code == 0 && plots) {
+    switch (draw_plots(s.dir, s.dir / "log.txt")) {
+      case PlotOutcome::Drawn:
+        if (!rep.quiet) rep.say(fmt::format("plots in {}", (s.dir / "plots").string()));
+        break;
+      case PlotOutcome::NoMatplotlib:
+      case PlotOutcome::NoScript:
+        rep.say("note: no plots drawn (python3-matplotlib is not installed; scripts/install-deps installs it)");
+        break;
+      case PlotOutcome::Failed: rep.say("warning: plotting failed (see log.txt); the data files are complete"); break;
+    }
+  }
+  rep.say(fmt::format("results in {}", s.dir.string()));
   return exit_code;
+}
+
+int bad_input(const std::exception& e) {
+  std::fprintf(stderr, "error: %s\n", e.what());
+  return 2;
+}
+
+}  // namespace
+
+int run_command(const fs::path& case_file, const RunOptions& opt) {
+  Session s;
+  try {
+    s.c = load_case(case_file, opt.overrides);
+    check_case_size(s.c);  // before anything is allocated or written
+    s.dir = prepare_run_dir(s.c, opt);
+  } catch (const CaseError& e) {
+    return bad_input(e);
+  } catch (const io::IoError& e) {
+    return bad_input(e);
+  }
+  if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  try {
+    Reporter rep(s.dir / "log.txt", opt.quiet);
+    io::write_file_atomic(s.dir / "case.toml", resolved_case_toml(s.c));
+    Scene scene = build_scene(s.c);
+    s.n_fluid = scene.particles.size() - scene.particles.n_boundary;
+    rep.say(fmt::format("particula: case '{}' from {}, {} particles ({} fluid, {} boundary), {} threads", s.c.name,
+                        case_file.string(), scene.particles.size(), s.n_fluid, scene.particles.n_boundary,
+                        omp_get_max_threads()));
+    s.solver = std::make_unique<Solver>(scene.params, scene.domain, std::move(scene.particles), std::move(scene.groups));
+    s.outputs = std::make_unique<RunOutputs>(s.dir, s.c);
+    return run_loop(s, rep, opt.plots);
+  } catch (const io::IoError& e) {
+    return bad_input(e);
+  }
+}
+
+bool resume_override_allowed(const std::string& assignment) {
+  std::string key = assignment.substr(0, assignment.find('='));
+  while (!key.empty() && (key.back() == ' ' || key.back() == '\t')) key.pop_back();
+  while (!key.empty() && (key.front() == ' ' || key.front() == '\t')) key.erase(key.begin());
+  return key == "time.end" || (key.rfind("output.", 0) == 0 && key.size() > 7);
+}
+
+int resume_command(const ResumeOptions& opt) {
+  for (const auto& o : opt.overrides)
+    if (!resume_override_allowed(o)) {
+      std::fprintf(stderr,
+                   "error: --set %s: only time.end and output.* keys can be changed when resuming (the checkpoint "
+                   "fixes the rest of the case)\n",
+                   o.c_str());
+      return 2;
+    }
+  const fs::path file = checkpoint_path(opt.run_dir);
+  std::error_code ec;
+  if (!fs::is_directory(opt.run_dir, ec)) {
+    std::fprintf(stderr, "error: run directory '%s' does not exist\n", opt.run_dir.string().c_str());
+    return 2;
+  }
+  if (!fs::exists(file, ec)) {
+    std::fprintf(stderr, "error: '%s' has no checkpoint to resume from ('%s' is missing)\n",
+                 opt.run_dir.string().c_str(), file.string().c_str());
+    return 2;
+  }
+  Session s;
+  Checkpoint k;
+  try {
+    k = read_checkpoint(file);
+    s.c = load_case_text(k.case_toml, file, opt.overrides);
+  } catch (const CaseError& e) {
+    return bad_input(e);
+  } catch (const io::IoError& e) {
+    return bad_input(e);
+  }
+  if (s.c.t_end < k.time * (1 - 1e-12)) {
+    std::fprintf(stderr, "error: key 'time.end': %.9g s is before the checkpoint's time %.9g s\n", s.c.t_end, k.time);
+    return 2;
+  }
+  s.dir = opt.run_dir;
+  s.resumed = true;
+  s.t_start = k.time;
+  if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  try {
+    Reporter rep(s.dir / "log.txt", opt.quiet);
+    io::write_file_atomic(s.dir / "case.toml", resolved_case_toml(s.c));
+    const Particles& P = k.particles;
+    s.n_fluid = P.size() - P.n_boundary;
+    rep.say(fmt::format("particula: resuming case '{}' in {} at t = {:.9g} s, step {} ({} particles), to t = {:.6g} s, "
+                        "{} threads",
+                        s.c.name, s.dir.string(), k.time, k.step, P.size(), s.c.t_end, omp_get_max_threads()));
+    const Domain domain{s.c.domain_min, s.c.domain_max, s.c.periodic_x, s.c.periodic_y};
+    s.solver = std::make_unique<Solver>(physics_params(s.c), domain, std::move(k.particles), std::move(k.groups),
+                                        SolverStart::Restart, k.time, k.step);
+    s.solver->set_counters(k.counters);
+    s.outputs = std::make_unique<RunOutputs>(s.dir, s.c, k.marks, k.time);
+    return run_loop(s, rep, opt.plots);
+  } catch (const io::IoError& e) {
+    return bad_input(e);
+  }
 }
 
 }  // namespace particula

@@ -8,6 +8,8 @@
 
 namespace particula {
 
-int info_command(const std::filesystem::path& case_file, const std::vector<std::string>& overrides);
+/// `timing`: time a few steps for the wall-time estimate (false: skip them, e.g. for tests).
+int info_command(const std::filesystem::path& case_file, const std::vector<std::string>& overrides,
+                 bool timing = true);
 
 }  // namespace particula

@@ -1,7 +1,7 @@
-// `particula run`: loads a case, builds the scene, advances the solver and feeds the
-// observers (progress, log, probes, body history, snapshots, summary). Returns the process
-// exit code of the command-line contract (0 ok, 1 internal, 2 bad input, 3 numerical
-// failure, 130 interrupted).
+// `particula run` and `particula resume`: load a case (or a checkpoint), advance the solver
+// and feed the observers (progress, log, probes, body history, snapshots, checkpoints,
+// summary). Both share one loop. They return the process exit code of the command-line
+// contract (0 ok, 1 internal, 2 bad input, 3 numerical failure, 130 interrupted).
 #pragma once
 
 #include <filesystem>
@@ -20,5 +20,25 @@ struct RunOptions {
 };
 
 int run_command(const std::filesystem::path& case_file, const RunOptions& options);
+
+struct ResumeOptions {
+  std::filesystem::path run_dir;
+  bool quiet = false;
+  bool plots = true;
+  int threads = 0;
+  /// Only time.end and output.* keys may change when resuming (anything else is exit 2).
+  std::vector<std::string> overrides;
+};
+
+/// `particula resume DIR`: continues the run from DIR/checkpoint/state.bin to time.end,
+/// appending to its output files.
+int resume_command(const ResumeOptions& options);
+
+/// Whether `--set key=value` may be given to `resume` (time.end and output.* keys).
+bool resume_override_allowed(const std::string& assignment);
+
+/// Name of the file a numerical failure writes its diagnostic checkpoint to (in DIR/checkpoint/);
+/// state.bin keeps the last good state.
+inline constexpr const char* kFailureCheckpoint = "failure.bin";
 
 }  // namespace particula

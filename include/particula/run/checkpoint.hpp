@@ -1,0 +1,156 @@
+// Checkpoints: the complete restartable state of a run in one binary file,
+// DIR/checkpoint/state.bin, written atomically (temporary file + rename).
+//
+// File layout (format version kCheckpointVersion):
+//   8 bytes   magic "PRTCLCKP"
+//   u32       format version
+//   u32       byte-order mark 0x01020304 (values are in the writer's byte order)
+//   u64       payload size in bytes
+//   payload   case TOML text, time, step, SolverCounters, output marks, Particles, RigidGroups
+//   u64       FNV-1a 64 checksum of the payload
+//
+// Reading refuses, with an io::IoError naming the file, a wrong magic, another format
+// version, another byte order, a truncated file, a checksum mismatch and inconsistent arrays.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "particula/solver/particles.hpp"
+#include "particula/solver/rigid_group.hpp"
+#include "particula/solver/solver.hpp"
+
+namespace particula {
+
+/// Bump when the layout or any field list below changes; older files are then refused.
+inline constexpr std::uint32_t kCheckpointVersion = 1;
+
+/// When an output stream ("bodies", "snapshots", "probe:<name>") was last written on its
+/// regular schedule. A resumed run drops rows after this time (the extra final-state rows of an
+/// interrupted run), so that it continues exactly as an uninterrupted run would.
+struct OutputMark {
+  std::string stream;
+  real last_scheduled = 0;
+};
+
+struct Checkpoint {
+  std::string case_toml;  // the resolved case (resolved_case_toml), without overrides applied later
+  real time = 0;
+  std::int64_t step = 0;
+  SolverCounters counters;
+  std::vector<OutputMark> marks;
+  Particles particles;
+  std::vector<RigidGroup> groups;
+};
+
+/// The same content by reference, so that a running solver's state is written without a copy.
+struct CheckpointView {
+  const std::string& case_toml;
+  const real& time;
+  const std::int64_t& step;
+  const SolverCounters& counters;
+  const std::vector<OutputMark>& marks;
+  const Particles& particles;
+  const std::vector<RigidGroup>& groups;
+};
+
+/// DIR/checkpoint/state.bin, the checkpoint `particula resume DIR` reads.
+std::filesystem::path checkpoint_path(const std::filesystem::path& run_dir);
+
+/// The file's bytes (header, payload, checksum).
+std::string encode_checkpoint(const CheckpointView& c);
+std::string encode_checkpoint(const Checkpoint& c);
+/// Parses and checks a checkpoint; `source` names the file in messages. Throws io::IoError.
+Checkpoint decode_checkpoint(std::string_view bytes, const std::filesystem::path& source);
+
+/// Writes `c` to `file` atomically, creating its directory. Throws io::IoError.
+void write_checkpoint(const std::filesystem::path& file, const CheckpointView& c);
+void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c);
+/// Reads and checks a checkpoint file. Throws io::IoError naming the file.
+Checkpoint read_checkpoint(const std::filesystem::path& file);
+
+// ---- the field lists ---------------------------------------------------------------------------
+// ONE list per struct, used for writing (const object) and reading (non-const object). When you
+// add a field to Particles, RigidGroup or SolverCounters: add one `ar(...)` line here, update
+// the field count below, and bump kCheckpointVersion. tests/test_checkpoint.cpp and the
+// static_asserts in src/run/checkpoint.cpp fail until you do.
+
+inline constexpr std::size_t kParticlesFields = 15;  // n_boundary + 14 arrays
+inline constexpr std::size_t kRigidGroupFields = 16;
+inline constexpr std::size_t kSolverCountersFields = 4;
+
+template <class Ar, class P>
+void particles_fields(Ar& ar, P& p) {
+  ar(p.n_boundary);
+  // every particle
+  ar(p.x);
+  ar(p.v);
+  ar(p.rho);
+  ar(p.p);
+  ar(p.m);
+  ar(p.kind);
+  ar(p.group);
+  ar(p.id);
+  // boundary block only
+  ar(p.local);
+  ar(p.normal_local);
+  ar(p.ds);
+  ar(p.acc);
+  ar(p.normal);
+  ar(p.source);
+}
+
+template <class Ar, class G>
+void rigid_group_fields(Ar& ar, G& g) {
+  ar(g.name);
+  ar(g.motion);
+  ar(g.is_wall);
+  ar(g.pos);
+  ar(g.vel);
+  ar(g.acc);
+  ar(g.angle);
+  ar(g.omega);
+  ar(g.alpha);
+  ar(g.pos0);
+  ar(g.angle0);
+  ar(g.first);
+  ar(g.count);
+  ar(g.force_pressure);
+  ar(g.force_viscous);
+  ar(g.torque);
+}
+
+template <class Ar, class C>
+void solver_counters_fields(Ar& ar, C& c) {
+  ar(c.singular_B);
+  ar(c.singular_Bhat);
+  ar(c.wall_pressure_kept);
+  ar(c.normal_fallback);
+}
+
+namespace checkpoint_detail {
+/// Number of members of an aggregate (brace-initialization probing): catches a field added to
+/// a struct without a line in its field list, even when it fits in padding.
+struct AnyField {
+  template <class T>
+  operator T() const;  // never defined: only used in unevaluated contexts
+};
+template <class T, std::size_t... I>
+constexpr bool brace_initializable(std::index_sequence<I...>) {
+  return requires { T{(static_cast<void>(I), AnyField{})...}; };
+}
+template <class T, std::size_t N = 0>
+constexpr std::size_t aggregate_field_count() {
+  if constexpr (!brace_initializable<T>(std::make_index_sequence<N + 1>{}))
+    return N;
+  else
+    return aggregate_field_count<T, N + 1>();
+}
+}  // namespace checkpoint_detail
+
+}  // namespace particula

@@ -1,0 +1,23 @@
+// Plots of a run directory, drawn by tools/plot_run.py with Debian's python3 and matplotlib.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace particula {
+
+enum class PlotOutcome { Drawn, NoMatplotlib, NoScript, Failed };
+
+/// The Python interpreter used for plots: /usr/bin/python3 when it exists (Debian's, where
+/// python3-matplotlib installs), else the first python3 on the PATH.
+std::string plot_python();
+
+/// Runs tools/plot_run.py on `run_dir`, appending its output to `log_file` (empty: the
+/// script writes to this process's stdout and stderr).
+PlotOutcome draw_plots(const std::filesystem::path& run_dir, const std::filesystem::path& log_file = {});
+
+/// `particula plot DIR`: exit 2 when DIR is not a run directory or matplotlib is missing,
+/// 1 when the script fails, 0 when the plots are in DIR/plots.
+int plot_command(const std::filesystem::path& run_dir);
+
+}  // namespace particula

@@ -1,0 +1,87 @@
+#include "particula/run/plots.hpp"
+
+#include <fcntl.h>
+#include <cerrno>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fmt/format.h>
+#include <vector>
+
+extern char** environ;
+
+namespace particula {
+
+namespace {
+
+/// Runs argv[0] (searched on the PATH) with its output appended to `log_file` (or inherited,
+/// when empty; `silent` sends it to /dev/null). Returns the exit status, or -1 when it could not
+/// run or ended on a signal.
+int run_program(const std::vector<std::string>& args, const std::filesystem::path& log_file, bool silent = false) {
+  std::vector<char*> argv;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  const std::string out = silent ? "/dev/null" : log_file.string();
+  if (!out.empty()) {
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  }
+  pid_t pid = 0;
+  const int err = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (err != 0) return -1;
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::filesystem::path plot_script() { return std::filesystem::path(PARTICULA_SOURCE_DIR) / "tools" / "plot_run.py"; }
+
+}  // namespace
+
+std::string plot_python() {
+  std::error_code ec;
+  return std::filesystem::exists("/usr/bin/python3", ec) ? "/usr/bin/python3" : "python3";
+}
+
+PlotOutcome draw_plots(const std::filesystem::path& run_dir, const std::filesystem::path& log_file) {
+  std::error_code ec;
+  if (!std::filesystem::exists(plot_script(), ec)) return PlotOutcome::NoScript;
+  const std::string python = plot_python();
+  if (run_program({python, "-c", "import matplotlib"}, {}, true) != 0) return PlotOutcome::NoMatplotlib;
+  return run_program({python, plot_script().string(), run_dir.string()}, log_file) == 0 ? PlotOutcome::Drawn
+                                                                                       : PlotOutcome::Failed;
+}
+
+int plot_command(const std::filesystem::path& run_dir) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(run_dir, ec) || !std::filesystem::exists(run_dir / "case.toml", ec)) {
+    std::fprintf(stderr, "error: '%s' is not a run directory (it has no case.toml)\n", run_dir.string().c_str());
+    return 2;
+  }
+  switch (draw_plots(run_dir)) {
+    case PlotOutcome::Drawn:
+      std::fprintf(stderr, "plots in %s\n", (run_dir / "plots").string().c_str());
+      return 0;
+    case PlotOutcome::NoMatplotlib:
+      std::fprintf(stderr,
+                   "error: no plots drawn: matplotlib is not installed for %s (Debian's python3-matplotlib; "
+                   "scripts/install-deps installs it)\n",
+                   plot_python().c_str());
+      return 2;
+    case PlotOutcome::NoScript:
+      std::fprintf(stderr, "error: no plots drawn: %s is missing\n", plot_script().string().c_str());
+      return 1;
+    case PlotOutcome::Failed: break;
+  }
+  std::fprintf(stderr, "error: %s failed on '%s' (its messages are above)\n", plot_script().string().c_str(),
+               run_dir.string().c_str());
+  return 1;
+}
+
+}  // namespace particula

@@ -1,0 +1,178 @@
+// Checkpoints and `particula resume` through the command line: a run 0 -> T and a run
+// 0 -> T/2 resumed to T write bitwise identical bodies.csv, probe CSVs and snapshots (also when
+// the first part is interrupted by SIGINT); damaged checkpoints and disallowed overrides are
+// refused with exit code 2.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli_process.hpp"
+#include "particula/io/vtk.hpp"
+#include "particula/run/checkpoint.hpp"
+
+namespace fs = std::filesystem;
+using cli_test::fresh_dir;
+using cli_test::cli;
+using cli_test::read_text;
+
+namespace {
+
+const fs::path kCouette = fs::path(PARTICULA_SOURCE_DIR) / "cases" / "couette.toml";
+
+/// `run` arguments for a coarse couette run into `out`, one thread (bitwise comparisons).
+std::vector<std::string> couette(const fs::path& out, const std::string& t_end, std::vector<std::string> extra = {}) {
+  std::vector<std::string> a{"run", kCouette.string(), "--out", out.string(), "--quiet", "--no-plots",
+                             "--threads", "1", "--set", "time.end=" + t_end, "--set",
+                             "output.snapshot_interval=0.05"};
+  for (auto& e : extra) a.push_back(e);
+  return a;
+}
+
+/// Every output stream of the two run directories is bitwise the same.
+void expect_same_outputs(const fs::path& a, const fs::path& b) {
+  for (const char* f : {"bodies.csv", "probe_profile.csv", "particles.pvd"}) {
+    const std::string ta = read_text(a / f), tb = read_text(b / f);
+    EXPECT_FALSE(ta.empty()) << f;
+    EXPECT_TRUE(ta == tb) << f << " differs between " << a << " and " << b;
+  }
+  const auto index = particula::io::PvdIndex::read(a / "particles.pvd");
+  for (const auto& e : index.entries()) EXPECT_TRUE(read_text(a / e.file) == read_text(b / e.file)) << e.file;
+  std::size_t files_a = 0, files_b = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(a / "particles")) ++files_a;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(b / "particles")) ++files_b;
+  EXPECT_EQ(files_a, index.entries().size());
+  EXPECT_EQ(files_b, files_a) << "snapshots after the checkpoint are removed on resume";
+}
+
+}  // namespace
+
+TEST(Resume, HalfRunResumedToTheEndIsBitwiseIdentical) {
+  const fs::path dir = fresh_dir("resume_half");
+  const auto full = cli(couette(dir / "full", "0.2"));
+  ASSERT_EQ(full.code, 0) << full.output;
+  const auto half = cli(couette(dir / "half", "0.1"));
+  ASSERT_EQ(half.code, 0) << half.output;
+  ASSERT_TRUE(fs::exists(dir / "half" / "checkpoint" / "state.bin"));
+  const auto resumed = cli({"resume", (dir / "half").string(), "--set", "time.end=0.2", "--threads", "1",
+                                  "--quiet", "--no-plots"});
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  expect_same_outputs(dir / "full", dir / "half");
+  EXPECT_FALSE(fs::exists(dir / "half" / ".resume")) << "the scratch directory is removed";
+  const std::string summary = read_text(dir / "half" / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"completed\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"resumed_from\": 0.1"), std::string::npos) << summary;
+  EXPECT_NE(read_text(dir / "half" / "case.toml").find("end = 0.2"), std::string::npos);
+  // The final checkpoints agree too (same state, same case).
+  EXPECT_TRUE(read_text(dir / "full" / "checkpoint" / "state.bin") == read_text(dir / "half" / "checkpoint" / "state.bin"));
+}
+
+TEST(Resume, RunInterruptedBySigintResumesBitwiseIdentical) {
+  const fs::path dir = fresh_dir("resume_sigint");
+  const auto full = cli(couette(dir / "full", "1.5"));
+  ASSERT_EQ(full.code, 0) << full.output;
+
+  cli_test::Child child(PARTICULA_BINARY, couette(dir / "cut", "1.5", {"--set", "output.checkpoint_interval=0.02"}));
+  const fs::path state = dir / "cut" / "checkpoint" / "state.bin";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (!fs::exists(state) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_TRUE(fs::exists(state)) << "no periodic checkpoint";
+  child.signal(SIGINT);
+  const auto cut = child.wait();
+  ASSERT_EQ(cut.code, 130) << cut.output;
+  const std::string summary = read_text(dir / "cut" / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"interrupted\""), std::string::npos) << summary;
+  const auto k = particula::read_checkpoint(state);
+  EXPECT_GT(k.time, 0.0);
+  EXPECT_LT(k.time, 1.5);
+
+  const auto resumed = cli({"resume", (dir / "cut").string(), "--threads", "1", "--quiet", "--no-plots"});
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  expect_same_outputs(dir / "full", dir / "cut");
+}
+
+TEST(Resume, SigtermAlsoInterruptsWithACheckpoint) {
+  const fs::path dir = fresh_dir("resume_sigterm");
+  cli_test::Child child(PARTICULA_BINARY, couette(dir / "run", "1.5", {"--set", "output.checkpoint_interval=0.02"}));
+  const fs::path state = dir / "run" / "checkpoint" / "state.bin";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (!fs::exists(state) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  child.signal(SIGTERM);
+  const auto r = child.wait();
+  EXPECT_EQ(r.code, 130) << r.output;
+  EXPECT_NE(r.output.find("particula resume"), std::string::npos) << r.output;
+}
+
+TEST(Resume, DamagedCheckpointIsRefusedWithExitTwo) {
+  const fs::path dir = fresh_dir("resume_damaged");
+  const auto run = cli(couette(dir / "run", "0.02"));
+  ASSERT_EQ(run.code, 0) << run.output;
+  const fs::path state = dir / "run" / "checkpoint" / "state.bin";
+  const std::string good = read_text(state);
+  ASSERT_GT(good.size(), 1000u);
+  struct Damage {
+    std::string name, bytes, expect;
+  };
+  std::string flipped = good;
+  flipped[good.size() / 2] = static_cast<char>(flipped[good.size() / 2] ^ 0x01);
+  std::string magic = good;
+  magic[1] = '?';
+  std::string version = good;
+  version[8] = static_cast<char>(version[8] + 1);
+  const std::vector<Damage> damages{{"flipped byte", flipped, "checksum mismatch"},
+                                    {"truncated", good.substr(0, good.size() / 2), "truncated"},
+                                    {"empty", "", "truncated"},
+                                    {"wrong magic", magic, "not a particula checkpoint"},
+                                    {"other version", version, "format version"}};
+  for (const auto& d : damages) {
+    cli_test::write_text(state, d.bytes);
+    const auto r = cli({"resume", (dir / "run").string(), "--quiet", "--no-plots"});
+    EXPECT_EQ(r.code, 2) << d.name << ": " << r.output;
+    EXPECT_NE(r.output.find(state.string()), std::string::npos) << d.name << ": " << r.output;
+    EXPECT_NE(r.output.find(d.expect), std::string::npos) << d.name << ": " << r.output;
+  }
+  cli_test::write_text(state, good);
+  const auto r = cli({"resume", (dir / "run").string(), "--quiet", "--no-plots", "--set", "time.end=0.03"});
+  EXPECT_EQ(r.code, 0) << r.output;
+}
+
+TEST(Resume, OnlyTimeEndAndOutputKeysMayChange) {
+  const fs::path dir = fresh_dir("resume_keys");
+  const auto run = cli(couette(dir / "run", "0.02"));
+  ASSERT_EQ(run.code, 0) << run.output;
+  auto r = cli({"resume", (dir / "run").string(), "--set", "fluid.nu=2e-6"});
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("fluid.nu"), std::string::npos) << r.output;
+  r = cli({"resume", (dir / "run").string(), "--set", "time.end=0.01"});
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("time.end"), std::string::npos) << r.output;
+  r = cli({"resume", (dir / "run").string(), "--set", "output.interval=-1"});
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("output.interval"), std::string::npos) << r.output;
+  r = cli({"resume", (dir / "nowhere").string()});
+  EXPECT_EQ(r.code, 2) << r.output;
+  fs::remove(dir / "run" / "checkpoint" / "state.bin");
+  r = cli({"resume", (dir / "run").string()});
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("state.bin"), std::string::npos) << r.output;
+}
+
+TEST(Resume, NumericalFailureWritesADiagnosticCheckpoint) {
+  const fs::path dir = fresh_dir("resume_failure");
+  const auto r = cli({"run", (fs::path(PARTICULA_SOURCE_DIR) / "cases" / "hydrostatic.toml").string(), "--out",
+                            (dir / "run").string(), "--quiet", "--no-plots", "--set", "fluid.c=0.05", "--set",
+                            "resolution.d0=0.005"});
+  ASSERT_EQ(r.code, 3) << r.output;
+  const fs::path diag = dir / "run" / "checkpoint" / "failure.bin";
+  ASSERT_TRUE(fs::exists(diag)) << r.output;
+  const auto k = particula::read_checkpoint(diag);
+  EXPECT_GT(k.step, 0);
+  EXPECT_NE(r.output.find("failure.bin"), std::string::npos) << r.output;
+}
