@@ -159,9 +159,12 @@ RunOutputs::RunOutputs(const fs::path& dir, const Case& c, const std::vector<Out
   bodies_ = std::make_unique<BodyHistoryWriter>(scratch_);
   csv_relays_.push_back(std::make_unique<CsvRelay>(scratch_ / "bodies.csv", dir / "bodies.csv", mark("bodies")));
   CsvRelay* body_relay = csv_relays_.back().get();
-  add("bodies", c.output_interval, [this, body_relay](const Solver& s) {
+  csv_relays_.push_back(std::make_unique<CsvRelay>(scratch_ / "walls.csv", dir / "walls.csv", mark("bodies")));
+  CsvRelay* wall_relay = csv_relays_.back().get();
+  add("bodies", c.output_interval, [this, body_relay, wall_relay](const Solver& s) {
     bodies_->write(s);
     body_relay->pump();
+    wall_relay->pump();
   });
   for (const auto& p : c.probes) {
     const std::string file = "probe_" + p.name + ".csv";
