@@ -179,7 +179,16 @@ def plot_snapshot(run, out):
     fig, axes = plt.subplots(1, 3, figsize=(12, max(3.0, min(9.0, 4.0 * aspect)) + 0.8))
     size = max(0.5, min(20.0, 20000.0 / max(1, len(x))))
     for ax, (name, vals, label) in zip(axes, fields):
-        sc = ax.scatter(x, y, c=vals, s=size, cmap="coolwarm" if name != "pressure" else "viridis", linewidths=0)
+        # colour range from the 1st to the 99th percentile, so that a few outliers (a particle
+        # squeezed against a wall, a failing run's last state) do not wash out the field
+        ranked = sorted(vals)
+        lo = ranked[int(0.01 * (len(ranked) - 1))]
+        hi = ranked[int(0.99 * (len(ranked) - 1))]
+        if name != "pressure":
+            hi = max(abs(lo), abs(hi))
+            lo = -hi
+        sc = ax.scatter(x, y, c=vals, s=size, cmap="coolwarm" if name != "pressure" else "viridis", linewidths=0,
+                        vmin=lo, vmax=hi if hi > lo else lo + 1e-30)
         ax.set_aspect("equal")
         ax.set_title("%s at t = %.4g s" % (name, times[-1]))
         fig.colorbar(sc, ax=ax, label=label, shrink=0.8)
