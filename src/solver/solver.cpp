@@ -297,8 +297,20 @@ std::optional<Failure> Solver::step(real dt_cap) {
   const real nu = prm_.nu;
   // In the dummy baseline, surface particles evolve their density like fluid particles.
   const std::size_t first_evolved = prm_.single_layer ? nb : 0;
-  auto evolves = [&](std::size_t i) { return i >= first_evolved && P_.kind[i] != Kind::Dummy; };
-  auto update_eos = [&](std::size_t i) { P_.p[i] = equation_of_state(P_.rho[i], prm_.rho0, prm_.c, prm_.p0); };
+  // One explicit stage of the fluid momentum (V = V_start + dt A) and of the modified continuity
+  // equation (rho = rho_start + dt D, with the velocity derivatives of the new V), then the EOS.
+  auto momentum_stage = [&](const std::vector<Vec2>& v_start) {
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = nb; i < n; ++i) P_.v[i] = v_start[i] + dt * momentum_rate(G_[i], lapV_[i], nu, f);
+  };
+  auto continuity_stage = [&](const std::vector<real>& rho_start) {
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+      if (i >= first_evolved && P_.kind[i] != Kind::Dummy) {
+        P_.rho[i] = rho_start[i] + dt * continuity_rate(rho_start[i], div_v_[i], g_dt, rc_[i]);
+        P_.p[i] = equation_of_state(P_.rho[i], prm_.rho0, prm_.c, prm_.p0);
+      }
+  };
 
   v_n_ = P_.v;
   rho_n_ = P_.rho;
@@ -319,17 +331,11 @@ std::optional<Failure> Solver::step(real dt_cap) {
   compute_pressure_gradient(P_.p, P_.rho);
   rhie_chow_sweep(P_.p, P_.rho);
   group_loads();
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = nb; i < n; ++i) P_.v[i] = v_n_[i] + dt * momentum_rate(G_[i], lapV_[i], nu, f);
+  momentum_stage(v_n_);
   body_stage(dt, t_ + dt, gv0, gw0);
   set_boundary_kinematics();  // positions stay frozen during the stages
   compute_velocity_derivatives(P_.v);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i)
-    if (evolves(i)) {
-      P_.rho[i] = rho_n_[i] + dt * continuity_rate(rho_n_[i], div_v_[i], g_dt, rc_[i]);
-      update_eos(i);
-    }
+  continuity_stage(rho_n_);
   boundary_pressure(P_.rho);
 
   // ---- corrector: V** = V* + dt A(V*, P*); bodies likewise; rho** = rho* + dt D(V**, P*)
@@ -342,17 +348,11 @@ std::optional<Failure> Solver::step(real dt_cap) {
   compute_pressure_gradient(P_.p, P_.rho);
   rhie_chow_sweep(P_.p, P_.rho);
   group_loads();
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = nb; i < n; ++i) P_.v[i] = v_s_[i] + dt * momentum_rate(G_[i], lapV_[i], nu, f);
+  momentum_stage(v_s_);
   body_stage(dt, t_ + dt, gv0, gw0);
   set_boundary_kinematics();
   compute_velocity_derivatives(P_.v);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i)
-    if (evolves(i)) {
-      P_.rho[i] = rho_s_[i] + dt * continuity_rate(rho_s_[i], div_v_[i], g_dt, rc_[i]);
-      update_eos(i);
-    }
+  continuity_stage(rho_s_);
   boundary_pressure(P_.rho);
 
   // ---- update (P.28, P.32): averages of the stage-start and corrected values
