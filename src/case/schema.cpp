@@ -329,8 +329,10 @@ std::vector<KeySpec> make_schema() {
                field(&Case::perturbation)),
       int_key("initial.seed", def(std::int64_t{1}), ge(0), "Seed of the random initial perturbation.",
               field(&Case::seed)),
-      choice_key("initial.flow", {"rest", "taylor_green"}, def(std::string{"rest"}),
-                 "Initial velocity field: fluid at rest or a Taylor-Green vortex.", &Case::initial_flow),
+      choice_key("initial.flow", {"rest", "taylor_green", "couette"}, def(std::string{"rest"}),
+                 "Initial velocity field: fluid at rest, a Taylor-Green vortex, or the developed linear "
+                 "shear between the walls at domain.min.y and domain.max.y (their velocities).",
+                 &Case::initial_flow),
       real_key("initial.amplitude", "m/s", def(1.0), gt(0), "Velocity amplitude of the initial flow.",
                field(&Case::initial_amplitude)),
       bool_key("initial.hydrostatic", def(false),

@@ -345,6 +345,13 @@ Scene build_scene(const Case& c) {
   for (Vec2 corner : {dom.lo, dom.hi, Vec2{dom.lo.x, dom.hi.y}, Vec2{dom.hi.x, dom.lo.y}})
     if (dot(c.gravity, corner) < dot(c.gravity, x_top)) x_top = corner;
   const bool hydrostatic = c.hydrostatic && c.gravity_in_fluid;
+  // Velocities of the walls lying along the domain's lower and upper edges (for initial.flow = couette).
+  Vec2 v_lower, v_upper;
+  for (const auto& w : c.walls) {
+    const real tol = 1e-6 * d0;
+    if (std::fabs(w.from.y - dom.lo.y) < tol && std::fabs(w.to.y - dom.lo.y) < tol) v_lower = w.velocity;
+    if (std::fabs(w.from.y - dom.hi.y) < tol && std::fabs(w.to.y - dom.hi.y) < tol) v_upper = w.velocity;
+  }
   const real U = c.initial_amplitude;
   for (std::size_t k = 0; k < fx.size(); ++k) {
     const std::size_t i = nb + k;
@@ -354,6 +361,11 @@ Scene build_scene(const Case& c) {
     P.group[i] = -1;
     real p = c.p0;
     if (hydrostatic) p += c.rho0 * dot(c.gravity, x - x_top);
+    if (c.initial_flow == InitialFlow::Couette) {
+      // developed Couette flow: linear in y between the velocities of the lower and upper walls
+      const real s = (x.y - dom.lo.y) / L.y;
+      P.v[i] = (1 - s) * v_lower + s * v_upper;
+    }
     if (c.initial_flow == InitialFlow::TaylorGreen) {
       // u = -U cos(2 pi x) sin(2 pi y), v = U sin(2 pi x) cos(2 pi y) on the unit-scaled box,
       // p = -rho U^2 (cos 4 pi x + cos 4 pi y) / 4.

@@ -15,7 +15,7 @@ namespace particula {
 enum class LaplacianScheme { FatehiManzari, Morris };
 enum class BoundaryModel { SingleLayer, Dummy };
 enum class NormalModel { Kernel, Analytic };
-enum class InitialFlow { Rest, TaylorGreen };
+enum class InitialFlow { Rest, TaylorGreen, Couette };
 /// Exact solution a case is compared with (probes get a vx_exact column, summary.json the error).
 enum class ExactSolution { None, Couette, Poiseuille };
 
