@@ -47,8 +47,8 @@ void CellGrid::bin(const std::vector<Vec2>& x) {
   }
   for (std::size_t c = 0; c < ncell; ++c) start_[c + 1] += start_[c];
   sorted_.resize(n);
-  std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i) sorted_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
+  fill_.assign(start_.begin(), start_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) sorted_[fill_[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
 }
 
 int CellGrid::neighbor_cells(int c, int out[9]) const {
@@ -102,19 +102,12 @@ void build_neighbor_list(const std::vector<Vec2>& x, const Domain& domain, const
   for (std::size_t i = 0; i < n; ++i) out.start[i + 1] += out.start[i];
   const std::size_t np = out.start[n];
   out.j.resize(np);
-  out.rij.resize(np);
-  out.r.resize(np);
-  out.F.resize(np);
   real dmin2 = std::numeric_limits<real>::infinity();
 #pragma omp parallel for schedule(static) reduction(min : dmin2)
   for (std::size_t i = 0; i < n; ++i) {
     std::uint32_t p = out.start[i];
-    visit(i, [&](std::uint32_t jj, Vec2 d, real d2) {
-      const real r = std::sqrt(d2);
+    visit(i, [&](std::uint32_t jj, Vec2, real d2) {
       out.j[p] = jj;
-      out.rij[p] = d;
-      out.r[p] = r;
-      out.F[p] = kernel.F(r);
       dmin2 = std::min(dmin2, d2);
       ++p;
     });

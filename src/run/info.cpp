@@ -53,8 +53,8 @@ int info_command(const std::filesystem::path& case_file, const std::vector<std::
     pairs = static_cast<double>(P.size()) * (M_PI * c.h_over_d0 * c.h_over_d0 - 1);
   }
   const double steps = std::ceil(c.t_end / dt);
-  // Particle arrays (~30 doubles each with the work arrays) plus the pair list (36 bytes a pair).
-  const double bytes = static_cast<double>(P.size()) * 30 * 8 + pairs * 36;
+  // Particle arrays (about 48 doubles each with the work arrays) plus the pair list (4 bytes a pair).
+  const double bytes = static_cast<double>(P.size()) * 48 * 8 + pairs * 4;
   std::printf("case            %s (%s)\n", c.name.c_str(), case_file.string().c_str());
   std::printf("particles       %zu: %zu fluid, %zu boundary surface, %zu dummy\n", P.size(), n_fluid, n_surface, n_dummy);
   std::printf("rigid groups    %zu\n", scene.groups.size());

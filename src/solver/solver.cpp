@@ -1,10 +1,12 @@
 #include "particula/solver/solver.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <type_traits>
 
 #include "particula/bodies/collision.hpp"
 #include "particula/bodies/rigid_motion.hpp"
@@ -27,9 +29,26 @@ Solver::Solver(PhysicsParams params, Domain domain, Particles particles, std::ve
   compute_velocity_derivatives(P_.v);
   const int sweeps = prm_.wall_pressure_sweeps;
   prm_.wall_pressure_sweeps = 50;
-  boundary_pressure(P_.rho);
+  boundary_pressure();
   prm_.wall_pressure_sweeps = sweeps;
 }
+
+namespace {
+
+/// Adds the wall-clock time of a scope to one PhaseTimes entry.
+class PhaseTimer {
+ public:
+  explicit PhaseTimer(double& slot) : slot_(slot), t0_(std::chrono::steady_clock::now()) {}
+  ~PhaseTimer() { slot_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
+  PhaseTimer(const PhaseTimer&) = delete;
+  PhaseTimer& operator=(const PhaseTimer&) = delete;
+
+ private:
+  double& slot_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+}  // namespace
 
 // ---------------------------------------------------------------------------------------------
 // Geometry: everything that depends on positions (and start-of-step volumes) only.
@@ -41,46 +60,62 @@ void Solver::update_volumes() {
   for (std::size_t i = 0; i < n; ++i) vol_[i] = P_.m[i] / P_.rho[i];
 }
 
+SweepContext Solver::sweep_context() const {
+  SweepContext c;
+  c.domain = domain_;
+  c.kernel = kernel_;
+  c.start = nl_.start.data();
+  c.j = nl_.j.data();
+  c.n = P_.size();
+  c.nb = P_.n_boundary;
+  c.x = P_.x.data();
+  c.vol = vol_.data();
+  c.kind = P_.kind.data();
+  c.fatehi_manzari = prm_.fatehi_manzari;
+  c.grad_w = pair_grad_w_.data();
+  c.lap_w = pair_lap_w_.data();
+  c.lap_esum = lap_esum_.data();
+  return c;
+}
+
 void Solver::refresh_geometry() {
-  build_neighbor_list(P_.x, domain_, kernel_, grid_, nl_);
+  {
+    PhaseTimer timer(times_.neighbors);
+    build_neighbor_list(P_.x, domain_, kernel_, grid_, nl_);
+  }
+  PhaseTimer timer(times_.geometry);
   update_volumes();
   geometry_sweep();
 }
 
 void Solver::geometry_sweep() {
-  const std::size_t n = P_.size();
+  const std::size_t n = P_.size(), nb = P_.n_boundary;
   B_.resize(n);
   Bhat_.resize(n);
   rbar_.resize(n);
-  nsum_.resize(P_.n_boundary);
+  shift_dir_.resize(n);
+  lap_esum_.resize(n);
+  pair_grad_w_.resize(nl_.pair_count());
+  pair_lap_w_.resize(nl_.pair_count());
+  const SweepContext c = sweep_context();
+  Vec2* grad_w = pair_grad_w_.data();
+  real* lap_w = pair_lap_w_.data();
+  const bool kernel_normals = prm_.kernel_normals;
   std::int64_t bad_B = 0, bad_Bhat = 0, bad_normal = 0;
 #pragma omp parallel for schedule(static) reduction(+ : bad_B, bad_Bhat, bad_normal)
   for (std::size_t i = 0; i < n; ++i) {
-    if (P_.kind[i] == Kind::Dummy) {
-      B_[i] = identity2();
-      Bhat_[i] = identity2();
-      continue;
-    }
-    Mat2 S;
-    LaplacianMoments mom;
-    Vec2 ns;
-    real rsum = 0;
-    const auto b = nl_.start[i], e = nl_.start[i + 1];
-    for (auto k = b; k < e; ++k) {
-      const real w = vol_[nl_.j[k]];
-      const real r = nl_.r[k];
-      S += renormalization_pair(w, nl_.F[k], nl_.rij[k]);
-      laplacian_moments_pair(mom, w, r, nl_.F[k] * r, nl_.rij[k] / r);
-      ns += (w * nl_.F[k]) * nl_.rij[k];
-      rsum += r;
-    }
-    if (!renormalization_tensor(S, B_[i])) ++bad_B;
-    if (!laplacian_correction_tensor(mom, B_[i], Bhat_[i], i < P_.n_boundary)) ++bad_Bhat;
-    rbar_[i] = e > b ? rsum / static_cast<real>(e - b) : prm_.d0;
+    const GeometryAt g = geometry_at(c, i, prm_.d0, grad_w, lap_w);
+    B_[i] = g.B;
+    Bhat_[i] = g.Bhat;
+    rbar_[i] = g.rbar;
+    shift_dir_[i] = g.shift_direction;
+    lap_esum_[i] = g.lap_esum;
+    if (P_.kind[i] == Kind::Dummy) continue;
+    bad_B += g.B_ok ? 0 : 1;
+    bad_Bhat += g.Bhat_ok ? 0 : 1;
     // P.18 normal; on failure the analytic normal set by place_boundary stays.
-    if (i < P_.n_boundary && prm_.kernel_normals && P_.kind[i] == Kind::Boundary) {
-      if (!kernel_normal(ns, P_.normal[i])) ++bad_normal;
-    }
+    if (i < nb && kernel_normals && P_.kind[i] == Kind::Boundary && !kernel_normal(g.normal_sum, P_.normal[i]))
+      ++bad_normal;
   }
   counters_.singular_B += bad_B;
   counters_.singular_Bhat += bad_Bhat;
@@ -88,104 +123,105 @@ void Solver::geometry_sweep() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Sweeps over the pair list. Every sum is a gather over i's own neighbours in list order, so
-// the result does not depend on the number of threads.
+// Sweeps over the pair list (solver/sweeps.hpp), fused where the data dependencies allow.
 
-void Solver::compute_velocity_derivatives(const std::vector<Vec2>& v) {
+void Solver::derivatives_sweep(const std::vector<Vec2>& v, std::vector<Vec2>* G_out) {
   const std::size_t n = P_.size();
   gradV_.resize(n);
   lapV_.resize(n);
   div_v_.resize(n);
-  const bool fm = prm_.fatehi_manzari;
+  if (G_out) G_out->resize(n);
+  const SweepContext c = sweep_context();
+  const Vec2* vp = v.data();
+  const real* p = P_.p.data();
+  const real* rho = P_.rho.data();
+  Vec2* G = G_out ? G_out->data() : nullptr;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    if (P_.kind[i] == Kind::Dummy) {
-      gradV_[i] = Mat2{};
-      lapV_[i] = Vec2{};
-      div_v_[i] = 0;
-      continue;
-    }
-    const auto b = nl_.start[i], e = nl_.start[i + 1];
-    const Mat2 Bi = B_[i];
     Mat2 L;
-    for (auto k = b; k < e; ++k) {
-      const auto j = nl_.j[k];
-      L += vector_gradient_pair((vol_[j] * nl_.F[k]) * (Bi * nl_.rij[k]), v[j] - v[i]);
-    }
     Vec2 lap;
-    const Mat2 Bh = Bhat_[i];
-    for (auto k = b; k < e; ++k) {
-      const auto j = nl_.j[k];
-      const real r = nl_.r[k];
-      const Vec2 eij = nl_.rij[k] / r;
-      const real dW = nl_.F[k] * r;
-      if (fm) {
-        lap += fm_laplacian_pair(fm_pair_weight(Bh, vol_[j], dW, eij), v[i] - v[j], r, eij, L);
-      } else {
-        lap += (morris_pair_weight(vol_[j], dW) / r) * (v[i] - v[j]);
-      }
-    }
+    velocity_derivatives_at(c, i, vp, L, lap);
     gradV_[i] = L;
     lapV_[i] = lap;
     div_v_[i] = trace(L);
+    if (G) G[i] = pressure_gradient_at(c, i, p, rho);
   }
 }
+
+void Solver::compute_velocity_derivatives(const std::vector<Vec2>& v) { derivatives_sweep(v, nullptr); }
 
 void Solver::compute_pressure_gradient(const std::vector<real>& p, const std::vector<real>& rho) {
   const std::size_t n = P_.size();
   G_.resize(n);
+  const SweepContext c = sweep_context();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) G_[i] = pressure_gradient_at(c, i, p.data(), rho.data());
+}
+
+void Solver::rhie_chow_and_momentum(const std::vector<Vec2>& v_start, real dt) {
+  const std::size_t n = P_.size(), nb = P_.n_boundary;
+  rc_.resize(n);
+  const SweepContext c = sweep_context();
+  const Vec2 f = prm_.body_force + (prm_.gravity_in_fluid ? prm_.gravity : Vec2{});
+  const real nu = prm_.nu;
+  // The sweep reads P, rho and G of the neighbours and writes only V_i of fluid particles,
+  // which it does not read: fusing the momentum stage into it is race-free.
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    Vec2 g;
-    const Mat2 Bi = B_[i];
-    for (auto k = nl_.start[i]; k < nl_.start[i + 1]; ++k) {
-      const auto j = nl_.j[k];
-      g += gradient_pair((vol_[j] * nl_.F[k]) * (Bi * nl_.rij[k]), p[j] - p[i]);
-    }
-    G_[i] = g / rho[i];
+    rc_[i] = rhie_chow_at(c, i, P_.p.data(), P_.rho.data(), G_.data());
+    if (i >= nb) P_.v[i] = v_start[i] + dt * momentum_rate(G_[i], lapV_[i], nu, f);
   }
 }
 
-void Solver::rhie_chow_sweep(const std::vector<real>& p, const std::vector<real>& rho) {
+void Solver::derivatives_and_continuity(const std::vector<real>& rho_start, real dt) {
   const std::size_t n = P_.size();
-  rc_.assign(n, 0);
-  const bool fm = prm_.fatehi_manzari;
+  gradV_.resize(n);
+  lapV_.resize(n);
+  div_v_.resize(n);
+  const SweepContext c = sweep_context();
+  const real g_dt = prm_.rhie_chow_factor * dt;
+  // In the dummy baseline, surface particles evolve their density like fluid particles.
+  const std::size_t first_evolved = prm_.single_layer ? P_.n_boundary : 0;
+  // The derivative sweep reads V and the frozen volumes, never rho or P: the continuity stage of
+  // particle i can follow its own derivatives in the same loop.
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    if (P_.kind[i] == Kind::Dummy) continue;
-    const Mat2 Bi = B_[i], Bh = Bhat_[i];
-    const Vec2 Gi = G_[i];
-    real div_g = 0, lap_p = 0;
-    for (auto k = nl_.start[i]; k < nl_.start[i + 1]; ++k) {
-      const auto j = nl_.j[k];
-      const real r = nl_.r[k];
-      const Vec2 eij = nl_.rij[k] / r;
-      const real dW = nl_.F[k] * r;
-      // <div <grad P/rho>>: the first-derivative scheme applied twice.
-      div_g += dot((vol_[j] * nl_.F[k]) * (Bi * nl_.rij[k]), G_[j] - Gi);
-      // <div (grad P/rho)>: the second-derivative scheme applied once.
-      const real dp = (p[i] - p[j]) / (0.5 * (rho[i] + rho[j]));
-      if (fm) {
-        lap_p += fm_laplacian_pair(fm_pair_weight(Bh, vol_[j], dW, eij), dp, r, eij, Gi);
-      } else {
-        lap_p += morris_pair_weight(vol_[j], dW) * dp / r;
-      }
+    Mat2 L;
+    Vec2 lap;
+    velocity_derivatives_at(c, i, P_.v.data(), L, lap);
+    gradV_[i] = L;
+    lapV_[i] = lap;
+    div_v_[i] = trace(L);
+    if (i >= first_evolved && P_.kind[i] != Kind::Dummy) {
+      P_.rho[i] = rho_start[i] + dt * continuity_rate(rho_start[i], div_v_[i], g_dt, rc_[i]);
+      P_.p[i] = equation_of_state(P_.rho[i], prm_.rho0, prm_.c, prm_.p0);
     }
-    rc_[i] = div_g - lap_p;
   }
 }
 
 // ---------------------------------------------------------------------------------------------
 // Boundary
 
+GroupMotion Solver::group_motion(const RigidGroup& g) const {
+  GroupMotion m;
+  m.pos = g.pos;
+  m.vel = g.vel;
+  m.acc = g.acc;
+  m.cos_angle = std::cos(g.angle);
+  m.sin_angle = std::sin(g.angle);
+  m.omega = g.omega;
+  m.alpha = g.alpha;
+  return m;
+}
+
 void Solver::place_boundary(real t) {
   (void)t;  // group poses are advanced by body_update
   for (auto& g : groups_) {
-    const real c = std::cos(g.angle), s = std::sin(g.angle);
+    const GroupMotion m = group_motion(g);
     for (std::size_t i = g.first; i < g.first + g.count; ++i) {
-      P_.x[i] = domain_.wrap(g.pos + rotate(P_.local[i], c, s));
+      P_.x[i] = surface_position(domain_, m, P_.local[i]);
       // Analytic normal; replaced by P.18 in the geometry sweep when kernel normals are used.
-      P_.normal[i] = rotate(P_.normal_local[i], c, s);
+      P_.normal[i] = rotate(P_.normal_local[i], m.cos_angle, m.sin_angle);
     }
   }
   set_boundary_kinematics();
@@ -193,17 +229,13 @@ void Solver::place_boundary(real t) {
 
 void Solver::set_boundary_kinematics() {
   for (const auto& g : groups_) {
-    const real c = std::cos(g.angle), s = std::sin(g.angle);
-    for (std::size_t i = g.first; i < g.first + g.count; ++i) {
-      const Vec2 R = rotate(P_.local[i], c, s);
-      P_.v[i] = g.vel + cross(g.omega, R);
-      P_.acc[i] = g.acc + cross(g.alpha, R) - (g.omega * g.omega) * R;  // a + alpha x R - |Omega|^2 R
-    }
+    const GroupMotion m = group_motion(g);
+    for (std::size_t i = g.first; i < g.first + g.count; ++i) surface_kinematics(m, P_.local[i], P_.v[i], P_.acc[i]);
   }
 }
 
-void Solver::boundary_pressure(const std::vector<real>& rho_ref) {
-  (void)rho_ref;
+void Solver::boundary_pressure() {
+  PhaseTimer timer(times_.wall_pressure);
   const std::size_t nb = P_.n_boundary;
   if (nb == 0) return;
   if (!prm_.single_layer) {
@@ -217,27 +249,21 @@ void Solver::boundary_pressure(const std::vector<real>& rho_ref) {
     return;
   }
   const Vec2 f = prm_.body_force + (prm_.gravity_in_fluid ? prm_.gravity : Vec2{});
-  std::vector<real> p_new(nb);
+  const SweepContext c = sweep_context();
+  p_new_.resize(nb);
   std::int64_t kept = 0;
   for (int sweep = 0; sweep < prm_.wall_pressure_sweeps; ++sweep) {
 #pragma omp parallel for schedule(static) reduction(+ : kept)
     for (std::size_t i = 0; i < nb; ++i) {
-      p_new[i] = P_.p[i];
+      p_new_[i] = P_.p[i];
       if (P_.kind[i] != Kind::Boundary) continue;
-      WallPressureSums s;
-      const Vec2 n = P_.normal[i];
-      const Mat2 Bi = B_[i];
-      for (auto k = nl_.start[i]; k < nl_.start[i + 1]; ++k) {
-        const auto j = nl_.j[k];
-        const Vec2 wBgW = (vol_[j] * nl_.F[k]) * (Bi * nl_.rij[k]);
-        wall_pressure_pair(s, wBgW, n, P_.p[j], 0.5 * (P_.rho[i] + P_.rho[j]), j >= nb);
-      }
-      if (!wall_pressure(s, P_.acc[i], prm_.nu * lapV_[i], f, n, p_new[i])) ++kept;
+      if (!wall_pressure_at(c, i, P_.p.data(), P_.rho.data(), P_.normal[i], P_.acc[i], prm_.nu * lapV_[i], f, p_new_[i]))
+        ++kept;
     }
     for (std::size_t i = 0; i < nb; ++i) {
       if (P_.kind[i] != Kind::Boundary) continue;
-      P_.p[i] = p_new[i];
-      P_.rho[i] = density_from_pressure(p_new[i], prm_.rho0, prm_.c, prm_.p0);
+      P_.p[i] = p_new_[i];
+      P_.rho[i] = density_from_pressure(p_new_[i], prm_.rho0, prm_.c, prm_.p0);
     }
   }
   counters_.wall_pressure_kept += kept;
@@ -250,10 +276,8 @@ void Solver::group_loads() {
     real torque = 0;
     for (std::size_t i = g.first; i < g.first + g.count; ++i) {
       if (P_.kind[i] != Kind::Boundary) continue;
-      const Vec2 n = P_.normal[i];
-      const Mat2 tau = mu * (gradV_[i] + transpose(gradV_[i]));
-      const Vec2 tp = (-P_.p[i] * P_.ds[i]) * n;
-      const Vec2 tv = P_.ds[i] * (n * tau);
+      Vec2 tp, tv;
+      surface_traction(P_.p[i], P_.ds[i], P_.normal[i], gradV_[i], mu, tp, tv);
       fp += tp;
       fv += tv;
       torque += cross(domain_.separation(P_.x[i], g.pos), tp + tv);
@@ -285,32 +309,22 @@ real Solver::stable_dt() const {
 }
 
 std::optional<Failure> Solver::step(real dt_cap) {
-  if (prm_.reorder_interval > 0 && steps_ % prm_.reorder_interval == 0) reorder_fluid();
+  if (prm_.reorder_interval > 0 && steps_ % prm_.reorder_interval == 0) {
+    PhaseTimer timer(times_.neighbors);
+    reorder_fluid();
+  }
   refresh_geometry();
-  if (auto f = collisions()) return f;
-  dt_ = stable_dt();
-  if (dt_cap > 0) dt_ = std::min(dt_, dt_cap);
+  {
+    PhaseTimer timer(times_.bodies);
+    if (auto f = collisions()) return f;
+  }
+  {
+    PhaseTimer timer(times_.integration);
+    dt_ = stable_dt();
+    if (dt_cap > 0) dt_ = std::min(dt_, dt_cap);
+  }
   const real dt = dt_;
-  const real g_dt = prm_.rhie_chow_factor * dt;
   const std::size_t n = P_.size(), nb = P_.n_boundary;
-  const Vec2 f = prm_.body_force + (prm_.gravity_in_fluid ? prm_.gravity : Vec2{});
-  const real nu = prm_.nu;
-  // In the dummy baseline, surface particles evolve their density like fluid particles.
-  const std::size_t first_evolved = prm_.single_layer ? nb : 0;
-  // One explicit stage of the fluid momentum (V = V_start + dt A) and of the modified continuity
-  // equation (rho = rho_start + dt D, with the velocity derivatives of the new V), then the EOS.
-  auto momentum_stage = [&](const std::vector<Vec2>& v_start) {
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = nb; i < n; ++i) P_.v[i] = v_start[i] + dt * momentum_rate(G_[i], lapV_[i], nu, f);
-  };
-  auto continuity_stage = [&](const std::vector<real>& rho_start) {
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i)
-      if (i >= first_evolved && P_.kind[i] != Kind::Dummy) {
-        P_.rho[i] = rho_start[i] + dt * continuity_rate(rho_start[i], div_v_[i], g_dt, rc_[i]);
-        P_.p[i] = equation_of_state(P_.rho[i], prm_.rho0, prm_.c, prm_.p0);
-      }
-  };
 
   v_n_ = P_.v;
   rho_n_ = P_.rho;
@@ -323,20 +337,29 @@ std::optional<Failure> Solver::step(real dt_cap) {
     groups_[k].vel_n = gv0[k] = groups_[k].vel;
     groups_[k].omega_n = gw0[k] = groups_[k].omega;
   }
+  // Bodies advance one stage from the loads of the current P, tau; their surface particles then
+  // carry the stage's velocity and acceleration (positions stay frozen during the stages).
+  auto bodies_stage = [&] {
+    PhaseTimer timer(times_.bodies);
+    group_loads();
+    body_stage(dt, t_ + dt, gv0, gw0);
+    set_boundary_kinematics();
+  };
 
   // ---- predictor: V* = V^n + dt A(V^n, P^n); bodies from the loads of P^n, tau^n;
   //      rho* = rho^n + dt D(V*, P^n) (continuity uses the new velocity)
-  compute_velocity_derivatives(P_.v);
-  gradV_n_ = gradV_;
-  compute_pressure_gradient(P_.p, P_.rho);
-  rhie_chow_sweep(P_.p, P_.rho);
-  group_loads();
-  momentum_stage(v_n_);
-  body_stage(dt, t_ + dt, gv0, gw0);
-  set_boundary_kinematics();  // positions stay frozen during the stages
-  compute_velocity_derivatives(P_.v);
-  continuity_stage(rho_n_);
-  boundary_pressure(P_.rho);
+  {
+    PhaseTimer timer(times_.operators);
+    derivatives_sweep(P_.v, &G_);
+    gradV_n_ = gradV_;
+    rhie_chow_and_momentum(v_n_, dt);
+  }
+  bodies_stage();
+  {
+    PhaseTimer timer(times_.operators);
+    derivatives_and_continuity(rho_n_, dt);
+  }
+  boundary_pressure();
 
   // ---- corrector: V** = V* + dt A(V*, P*); bodies likewise; rho** = rho* + dt D(V**, P*)
   v_s_ = P_.v;
@@ -345,43 +368,52 @@ std::optional<Failure> Solver::step(real dt_cap) {
     gv0[k] = groups_[k].vel;
     gw0[k] = groups_[k].omega;
   }
-  compute_pressure_gradient(P_.p, P_.rho);
-  rhie_chow_sweep(P_.p, P_.rho);
-  group_loads();
-  momentum_stage(v_s_);
-  body_stage(dt, t_ + dt, gv0, gw0);
-  set_boundary_kinematics();
-  compute_velocity_derivatives(P_.v);
-  continuity_stage(rho_s_);
-  boundary_pressure(P_.rho);
+  {
+    PhaseTimer timer(times_.operators);
+    compute_pressure_gradient(P_.p, P_.rho);
+    rhie_chow_and_momentum(v_s_, dt);
+  }
+  bodies_stage();
+  {
+    PhaseTimer timer(times_.operators);
+    derivatives_and_continuity(rho_s_, dt);
+  }
+  boundary_pressure();
 
   // ---- update (P.28, P.32): averages of the stage-start and corrected values
   real vmax2 = 0;
+  {
+    PhaseTimer timer(times_.integration);
 #pragma omp parallel for schedule(static) reduction(max : vmax2)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (i >= nb) {
-      P_.v[i] = 0.5 * (P_.v[i] + v_n_[i]);
-      P_.x[i] = domain_.wrap(P_.x[i] + dt * P_.v[i]);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i >= nb) {
+        P_.v[i] = 0.5 * (P_.v[i] + v_n_[i]);
+        P_.x[i] = domain_.wrap(P_.x[i] + dt * P_.v[i]);
+      }
+      if (i >= nb || prm_.single_layer || P_.kind[i] != Kind::Dummy) {
+        P_.rho[i] = 0.5 * (P_.rho[i] + rho_n_[i]);
+        P_.p[i] = 0.5 * (P_.p[i] + p_n_[i]);
+      }
+      vmax2 = std::max(vmax2, norm2(P_.v[i]));
     }
-    if (i >= nb || prm_.single_layer || P_.kind[i] != Kind::Dummy) {
-      P_.rho[i] = 0.5 * (P_.rho[i] + rho_n_[i]);
-      P_.p[i] = 0.5 * (P_.p[i] + p_n_[i]);
-    }
-    vmax2 = std::max(vmax2, norm2(P_.v[i]));
   }
-  if (!prm_.single_layer) boundary_pressure(P_.rho);  // dummies copy the averaged surface values
+  if (!prm_.single_layer) boundary_pressure();  // dummies copy the averaged surface values
   t_ += dt;
   ++steps_;
-  body_update(dt, t_);
-  place_boundary(t_);
+  {
+    PhaseTimer timer(times_.bodies);
+    body_update(dt, t_);
+    place_boundary(t_);
+  }
 
   // ---- particle shifting (P.33-P.36), with the step's geometry and the new fields
   if (prm_.shifting_beta > 0) {
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) gradV_[i] = 0.5 * (gradV_[i] + gradV_n_[i]);
+    PhaseTimer timer(times_.shifting);
+    // <grad P>/rho of the new pressures with the step's geometry (the stored pair weights).
     compute_pressure_gradient(P_.p, P_.rho);
     shift_particles(dt, std::sqrt(vmax2));
   }
+  PhaseTimer timer(times_.integration);
   return check_health();
 }
 
@@ -484,32 +516,36 @@ std::optional<Failure> Solver::collisions() {
 void Solver::shift_particles(real dt, real vmax) {
   const std::size_t n = P_.size(), nb = P_.n_boundary;
   const real scale = prm_.shifting_beta * vmax * dt;
+  // The Taylor corrections use the step's mean velocity gradient (stage start and end).
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) gradV_[i] = 0.5 * (gradV_[i] + gradV_n_[i]);
   if (!(scale > 0)) return;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = nb; i < n; ++i) {
-    const real rbar2 = rbar_[i] * rbar_[i];
-    Vec2 sum;
-    for (auto k = nl_.start[i]; k < nl_.start[i + 1]; ++k) sum += shifting_pair(rbar2, nl_.r[k], nl_.rij[k]);
-    const Vec2 dr = scale * sum;
+    const Vec2 dr = scale * shift_dir_[i];       // P.33, direction from the geometry sweep
     P_.x[i] = domain_.wrap(P_.x[i] + dr);
-    P_.v[i] += dr * gradV_[i];                 // P.34
+    P_.v[i] += dr * gradV_[i];                   // P.34
     const real dp = P_.rho[i] * dot(dr, G_[i]);  // P.35: rho dr . <grad P / rho>
     P_.p[i] += dp;
-    P_.rho[i] += dp / (prm_.c * prm_.c);       // P.36
+    P_.rho[i] += dp / (prm_.c * prm_.c);         // P.36
   }
 }
 
 void Solver::reorder_fluid() {
   const std::size_t n = P_.size(), nb = P_.n_boundary;
   if (n == nb) return;
-  std::vector<std::uint32_t> key(n - nb);
-  for (std::size_t i = nb; i < n; ++i) key[i - nb] = static_cast<std::uint32_t>(grid_.cell_index(P_.x[i]));
-  std::vector<std::size_t> order(n - nb);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+  reorder_key_.resize(n - nb);
+  for (std::size_t i = nb; i < n; ++i) reorder_key_[i - nb] = static_cast<std::uint32_t>(grid_.cell_index(P_.x[i]));
+  reorder_order_.resize(n - nb);
+  std::iota(reorder_order_.begin(), reorder_order_.end(), std::size_t{0});
+  std::stable_sort(reorder_order_.begin(), reorder_order_.end(),
+                   [&](std::size_t a, std::size_t b) { return reorder_key_[a] < reorder_key_[b]; });
   auto permute = [&](auto& vec) {
-    auto copy = vec;
-    for (std::size_t k = 0; k < order.size(); ++k) vec[nb + k] = copy[nb + order[k]];
+    using T = typename std::decay_t<decltype(vec)>::value_type;
+    reorder_scratch_.resize((n - nb) * sizeof(T));
+    T* copy = reinterpret_cast<T*>(reorder_scratch_.data());
+    std::copy(vec.begin() + static_cast<std::ptrdiff_t>(nb), vec.end(), copy);
+    for (std::size_t k = 0; k < reorder_order_.size(); ++k) vec[nb + k] = copy[reorder_order_[k]];
   };
   permute(P_.x);
   permute(P_.v);

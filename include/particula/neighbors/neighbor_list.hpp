@@ -1,7 +1,8 @@
 // Cell-linked-list neighbour search with periodic images, producing a compressed pair list
-// (CSR) that stores, per pair, everything that depends only on positions: r_ij, |r_ij| and
-// the kernel factor F = W'(r)/r (so grad_i W_ij = F r_ij). Positions are frozen during the
-// two stages of a step, so the list is built once per step and reused by every sweep.
+// (CSR) of neighbour indices only. Positions are frozen during the two stages of a step, so the
+// list is built once per step and reused by every sweep; the sweeps recompute r_ij, |r_ij| and
+// W'/r from the positions (solver/sweeps.hpp: pair_geometry), which costs a few flops per pair
+// but saves streaming 32 bytes per pair from memory in every sweep.
 #pragma once
 
 #include <cstdint>
@@ -38,15 +39,12 @@ class CellGrid {
   Vec2 origin_;
   real cell_x_ = 1, cell_y_ = 1;
   int nx_ = 1, ny_ = 1;
-  std::vector<std::uint32_t> start_, sorted_, cell_of_;
+  std::vector<std::uint32_t> start_, sorted_, cell_of_, fill_;
 };
 
 struct NeighborList {
   std::vector<std::uint32_t> start;  // size n+1; pairs of i are [start[i], start[i+1])
   std::vector<std::uint32_t> j;
-  std::vector<Vec2> rij;             // r_i - r_j (minimum image)
-  std::vector<real> r;               // |r_ij|
-  std::vector<real> F;               // W'(r)/r
   real min_distance = 0;             // smallest |r_ij| over all pairs (d_min of P.29-P.31)
 
   std::size_t size() const { return start.empty() ? 0 : start.size() - 1; }

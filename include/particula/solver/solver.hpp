@@ -13,6 +13,7 @@
 #include "particula/neighbors/neighbor_list.hpp"
 #include "particula/solver/particles.hpp"
 #include "particula/solver/rigid_group.hpp"
+#include "particula/solver/sweeps.hpp"
 #include "particula/sph/kernel.hpp"
 
 namespace particula {
@@ -64,6 +65,19 @@ struct SolverCounters {
   std::int64_t normal_fallback = 0;     // P.18 sum vanished -> analytic normal used
 };
 
+/// Wall-clock seconds spent in each phase of the time step, summed over the steps taken (the
+/// benchmark's per-phase breakdown; a handful of clock reads per step).
+struct PhaseTimes {
+  double neighbors = 0;      // cell binning, neighbour list, fluid reordering
+  double geometry = 0;       // B, Bhat, normals, rbar, shifting direction
+  double operators = 0;      // velocity derivatives, pressure gradient, Rhie-Chow, fluid stages
+  double wall_pressure = 0;  // P.20 (or the dummy copy)
+  double bodies = 0;         // loads, collisions, rigid motion, surface placement
+  double integration = 0;    // end-of-step averages, dt, health check
+  double shifting = 0;       // pressure gradient of the new state and the shift
+  double total() const { return neighbors + geometry + operators + wall_pressure + bodies + integration + shifting; }
+};
+
 /// A numerical failure detected after a step (exit code 3).
 struct Failure {
   std::string what;
@@ -96,6 +110,7 @@ class Solver {
   const SolverCounters& counters() const { return counters_; }
   const WendlandC2& kernel() const { return kernel_; }
   std::size_t last_pair_count() const { return nl_.pair_count(); }
+  const PhaseTimes& phase_times() const { return times_; }
 
   /// Time step of P.29-P.31 for the current state (rebuilds nothing: uses the last list).
   real stable_dt() const;
@@ -114,6 +129,9 @@ class Solver {
   const std::vector<Vec2>& lap_v() const { return lapV_; }
   const std::vector<Vec2>& grad_p_over_rho() const { return G_; }
   const NeighborList& neighbors() const { return nl_; }
+  /// The arrays every sweep reads (neighbour list, positions, volumes, B, Bhat) as plain
+  /// pointers for the per-particle functions of solver/sweeps.hpp (micro-benchmarks, tests).
+  SweepContext sweep_context() const;
 
   /// Sweeps exposed for tests: derivatives of given fields on the current neighbour list.
   void compute_velocity_derivatives(const std::vector<Vec2>& v);
@@ -124,8 +142,13 @@ class Solver {
   void set_boundary_kinematics();
   void update_volumes();
   void geometry_sweep();
-  void rhie_chow_sweep(const std::vector<real>& p, const std::vector<real>& rho);
-  void boundary_pressure(const std::vector<real>& rho_ref);
+  /// Velocity derivatives of `v` and, when `G_out` is set, the pressure gradient, in one sweep.
+  void derivatives_sweep(const std::vector<Vec2>& v, std::vector<Vec2>* G_out);
+  /// Rhie-Chow bracket of the current P, then the fluid momentum stage V = V_start + dt A.
+  void rhie_chow_and_momentum(const std::vector<Vec2>& v_start, real dt);
+  /// Velocity derivatives of the new V, then the continuity stage rho = rho_start + dt D.
+  void derivatives_and_continuity(const std::vector<real>& rho_start, real dt);
+  void boundary_pressure();
   void group_loads();
   /// Collision forces of the step (positions frozen); a failure when solids interpenetrate.
   std::optional<Failure> collisions();
@@ -134,6 +157,7 @@ class Solver {
   void body_stage(real dt, real t_stage_end, const std::vector<Vec2>& v0, const std::vector<real>& omega0);
   void body_update(real dt, real t_new);
   void shift_particles(real dt, real vmax);
+  GroupMotion group_motion(const RigidGroup& g) const;
   void reorder_fluid();
   std::optional<Failure> check_health() const;
   real max_speed() const;
@@ -148,13 +172,21 @@ class Solver {
   SolverCounters counters_;
   real t_ = 0, dt_ = 0;
   std::int64_t steps_ = 0;
+  PhaseTimes times_;
 
-  // per-particle work arrays
-  std::vector<real> vol_, rbar_, rc_, rho_n_, rho_s_, div_v_, p_n_;
+  // per-particle work arrays (sized once; the step loop allocates nothing)
+  std::vector<real> vol_, rbar_, rc_, rho_n_, rho_s_, div_v_, p_n_, p_new_;
   std::vector<Vec2> group_v0_;
   std::vector<real> group_w0_;
   std::vector<Mat2> B_, Bhat_, gradV_, gradV_n_;
-  std::vector<Vec2> lapV_, G_, v_n_, v_s_, nsum_;
+  std::vector<Vec2> lapV_, G_, v_n_, v_s_, shift_dir_, lap_esum_;
+  // per-pair weights of the geometry sweep (solver/sweeps.hpp)
+  std::vector<Vec2> pair_grad_w_;
+  std::vector<real> pair_lap_w_;
+  // reordering scratch
+  std::vector<std::uint32_t> reorder_key_;
+  std::vector<std::size_t> reorder_order_;
+  std::vector<unsigned char> reorder_scratch_;
 };
 
 }  // namespace particula

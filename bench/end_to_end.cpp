@@ -1,0 +1,133 @@
+// End-to-end throughput benchmark (issue: speed): builds a case (by default the falling
+// cylinder of paper 7.2), advances it a fixed number of steps and prints particles, steps, wall
+// seconds, particle-steps per second and the per-phase breakdown of Solver::phase_times().
+//
+//   particula_bench_e2e [--case FILE] [--d0 M] [--steps N] [--warmup N] [--threads N]
+//                       [--set key=value]...
+//
+// Output is one human-readable block and one machine-readable line starting with "RESULT".
+#include <omp.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "particula/case/load.hpp"
+#include "particula/scene/scene.hpp"
+#include "particula/solver/solver.hpp"
+
+namespace {
+
+using namespace particula;
+
+struct Options {
+  std::string case_file = std::string(PARTICULA_SOURCE_DIR) + "/cases/falling_cylinder.toml";
+  std::string d0;  // empty: the case file's
+  int steps = 50, warmup = 3, threads = 0;
+  std::vector<std::string> overrides;
+};
+
+[[noreturn]] void usage(const char* msg) {
+  std::fprintf(stderr,
+               "error: %s\nusage: particula_bench_e2e [--case FILE] [--d0 M] [--steps N] [--warmup N] "
+               "[--threads N] [--set key=value]...\n",
+               msg);
+  std::exit(2);
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int a = 1; a < argc; ++a) {
+    const std::string arg = argv[a];
+    auto value = [&]() -> std::string {
+      if (a + 1 >= argc) usage(("missing value after " + arg).c_str());
+      return argv[++a];
+    };
+    if (arg == "--case") o.case_file = value();
+    else if (arg == "--d0") o.d0 = value();
+    else if (arg == "--steps") o.steps = std::atoi(value().c_str());
+    else if (arg == "--warmup") o.warmup = std::atoi(value().c_str());
+    else if (arg == "--threads") o.threads = std::atoi(value().c_str());
+    else if (arg == "--set") o.overrides.push_back(value());
+    else usage(("unknown argument " + arg).c_str());
+  }
+  if (o.steps < 1 || o.warmup < 0) usage("--steps must be >= 1 and --warmup >= 0");
+  if (!o.d0.empty()) o.overrides.push_back("resolution.d0=" + o.d0);
+  return o;
+}
+
+PhaseTimes minus(const PhaseTimes& a, const PhaseTimes& b) {
+  PhaseTimes d;
+  d.neighbors = a.neighbors - b.neighbors;
+  d.geometry = a.geometry - b.geometry;
+  d.operators = a.operators - b.operators;
+  d.wall_pressure = a.wall_pressure - b.wall_pressure;
+  d.bodies = a.bodies - b.bodies;
+  d.integration = a.integration - b.integration;
+  d.shifting = a.shifting - b.shifting;
+  return d;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  if (o.threads > 0) omp_set_num_threads(o.threads);
+  Case c;
+  try {
+    c = load_case(o.case_file, o.overrides);
+  } catch (const CaseError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+  const auto t_setup = std::chrono::steady_clock::now();
+  Scene scene = build_scene(c);
+  Solver solver(scene.params, scene.domain, std::move(scene.particles), scene.groups);
+  const double setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count();
+  for (int s = 0; s < o.warmup; ++s)
+    if (solver.step()) {
+      std::fprintf(stderr, "error: the run failed during warm-up\n");
+      return 3;
+    }
+  const PhaseTimes before = solver.phase_times();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int s = 0; s < o.steps; ++s)
+    if (auto f = solver.step()) {
+      std::fprintf(stderr, "error: the run failed at step %d: %s\n", s, f->what.c_str());
+      return 3;
+    }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const PhaseTimes p = minus(solver.phase_times(), before);
+  const double n = static_cast<double>(solver.particles().size());
+  const double rate = n * o.steps / wall;
+  const int threads = omp_get_max_threads();
+  std::printf("case              %s, d0 = %g m\n", c.name.c_str(), c.d0);
+  std::printf("particles         %.0f (%zu pairs, %.1f per particle)\n", n, solver.last_pair_count(),
+              static_cast<double>(solver.last_pair_count()) / n);
+  std::printf("threads           %d (backend cpu)\n", threads);
+  std::printf("setup             %.3f s\n", setup_s);
+  std::printf("steps             %d (after %d warm-up)\n", o.steps, o.warmup);
+  std::printf("wall              %.3f s (%.4g s per step)\n", wall, wall / o.steps);
+  std::printf("throughput        %.4g particle-steps/s\n", rate);
+  std::printf("phases (s per step, share of the timed phases)\n");
+  const double tot = p.total();
+  auto line = [&](const char* name, double v) {
+    std::printf("  %-15s %.5f  %5.1f %%\n", name, v / o.steps, tot > 0 ? 100 * v / tot : 0.0);
+  };
+  line("neighbours", p.neighbors);
+  line("geometry", p.geometry);
+  line("operators", p.operators);
+  line("wall pressure", p.wall_pressure);
+  line("bodies", p.bodies);
+  line("integration", p.integration);
+  line("shifting", p.shifting);
+  std::printf("  %-15s %.5f  (outside the timed phases: %.5f)\n", "total", tot / o.steps, (wall - tot) / o.steps);
+  std::printf(
+      "RESULT case=%s d0=%g backend=cpu threads=%d particles=%.0f steps=%d wall_s=%.4f particle_steps_per_s=%.4g "
+      "neighbors=%.4f geometry=%.4f operators=%.4f wall_pressure=%.4f bodies=%.4f integration=%.4f shifting=%.4f\n",
+      c.name.c_str(), c.d0, threads, n, o.steps, wall, rate, p.neighbors, p.geometry, p.operators, p.wall_pressure,
+      p.bodies, p.integration, p.shifting);
+  return 0;
+}

@@ -1,0 +1,223 @@
+// The per-particle work of one time step (method.md sections 3-10), written once as
+// PARTICULA_HD functions of plain pointers: the OpenMP loops of solver.cpp and the CUDA
+// kernels of src/cuda/ call exactly these functions, so no formula exists twice.
+//
+// Every neighbour sum is a gather over particle i's own CSR neighbour list, in list order, so
+// the result of a sweep does not depend on the number of threads (or on the GPU's scheduling).
+//
+// Positions are frozen during the two stages of a step, so everything that depends on them
+// alone is computed once per step by the geometry sweep and stored per pair (28 bytes with the
+// neighbour index): the gradient weight w_j B_i gradW_ij and the Laplacian weight. Every later
+// sweep is then a few multiply-adds per pair on stored weights and gathered fields.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "particula/boundary/wall_pressure.hpp"
+#include "particula/core/types.hpp"
+#include "particula/fluid/fluid.hpp"
+#include "particula/neighbors/domain.hpp"
+#include "particula/solver/particles.hpp"
+#include "particula/sph/kernel.hpp"
+#include "particula/sph/operators.hpp"
+
+namespace particula {
+
+/// Geometry of the pair (i, j): r_ij = r_i - r_j (minimum image), r = |r_ij|, and the kernel
+/// factor F = W'(r)/r so that grad_i W_ij = F r_ij.
+struct PairGeometry {
+  Vec2 rij;
+  real r = 0, F = 0;
+};
+
+PARTICULA_HD PairGeometry pair_geometry(const Domain& domain, const WendlandC2& kernel, Vec2 xi, Vec2 xj) {
+  PairGeometry g;
+  g.rij = domain.separation(xi, xj);
+  g.r = std::sqrt(norm2(g.rij));
+  g.F = kernel.F(g.r);
+  return g;
+}
+
+/// What every sweep reads: the neighbour list (CSR), positions, start-of-step volumes w = m/rho,
+/// particle kinds, and the per-pair weights of the geometry sweep. Plain pointers, valid on the
+/// host (std::vector data) or on the device (cudaMalloc'd arrays).
+struct SweepContext {
+  Domain domain;
+  WendlandC2 kernel;
+  const std::uint32_t* start = nullptr;  // pairs of i are j[start[i] .. start[i+1])
+  const std::uint32_t* j = nullptr;
+  std::size_t n = 0;   // particles
+  std::size_t nb = 0;  // boundary block [0, nb)
+  const Vec2* x = nullptr;
+  const real* vol = nullptr;
+  const Kind* kind = nullptr;
+  bool fatehi_manzari = true;  // false: Morris Laplacian (baseline)
+  // written by the geometry sweep
+  const Vec2* grad_w = nullptr;    // per pair: w_j B_i gradW_ij (renormalized gradient weight, P.7)
+  const real* lap_w = nullptr;     // per pair: Laplacian weight / r_ij (see pair_weights)
+  const Vec2* lap_esum = nullptr;  // per particle: sum_j (Laplacian weight) e_ij
+};
+
+// ---- geometry (positions and start-of-step volumes only, once per step) --------------------
+
+/// Position-only quantities of particle i.
+struct GeometryAt {
+  Mat2 B = identity2(), Bhat = identity2();
+  real rbar = 0;         // mean neighbour distance (P.33)
+  Vec2 normal_sum;       // sum_j w_j gradW_ij, the P.18 normal before normalization
+  Vec2 shift_direction;  // sum_j (rbar^2 / r^2) e_ij of P.33, before the factor beta V_max dt
+  Vec2 lap_esum;         // sum_j (Laplacian weight) e_ij
+  bool B_ok = true, Bhat_ok = true;
+};
+
+/// The geometry sweep for particle i: B_i (P.6), Bhat_i (P.11, with the soundness guard for
+/// boundary particles), rbar_i, the P.18 normal sum, the shifting direction of fluid particles
+/// (P.33), and the per-pair weights of every later sweep, written to grad_w[k], lap_w[k] for
+/// the pairs k of i:
+///   grad_w = w_j B_i gradW_ij, so <grad u>_i = sum_k grad_w (u_j - u_i)            (P.7)
+///   Laplacian pair term = weight [ (u_i - u_j)/r - e . <grad u>_i ]                 (P.10)
+///     with weight = 2 w_j W' (e . Bhat_i . e) (Fatehi-Manzari) or 2 w_j W' and no
+///     gradient term (Morris, P.8); stored as lap_w = weight / r and, per particle,
+///     lap_esum = sum_k weight e, so that <lap u>_i = sum_k lap_w (u_i - u_j) - lap_esum . <grad u>_i.
+/// Dummy particles (baseline) get B = Bhat = I: their pressure gradient, which the Rhie-Chow
+/// term of their fluid neighbours reads, is the plain SPH gradient; no Laplacian weights.
+/// `d0` is rbar for a particle alone.
+PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d0, Vec2* grad_w, real* lap_w) {
+  GeometryAt out;
+  const std::uint32_t b = c.start[i], e = c.start[i + 1];
+  const Vec2 xi = c.x[i];
+  if (c.kind[i] == Kind::Dummy) {
+    for (std::uint32_t k = b; k < e; ++k) {
+      const std::uint32_t j = c.j[k];
+      const PairGeometry g = pair_geometry(c.domain, c.kernel, xi, c.x[j]);
+      grad_w[k] = (c.vol[j] * g.F) * g.rij;
+      lap_w[k] = 0;
+    }
+    return out;
+  }
+  Mat2 S;
+  LaplacianMoments mom;
+  real rsum = 0;
+  for (std::uint32_t k = b; k < e; ++k) {
+    const std::uint32_t j = c.j[k];
+    const PairGeometry g = pair_geometry(c.domain, c.kernel, xi, c.x[j]);
+    const real w = c.vol[j];
+    S += renormalization_pair(w, g.F, g.rij);
+    laplacian_moments_pair(mom, w, g.r, g.F * g.r, g.rij / g.r);
+    out.normal_sum += (w * g.F) * g.rij;
+    rsum += g.r;
+  }
+  out.B_ok = renormalization_tensor(S, out.B);
+  out.Bhat_ok = laplacian_correction_tensor(mom, out.B, out.Bhat, i < c.nb);
+  out.rbar = e > b ? rsum / static_cast<real>(e - b) : d0;
+  const real rbar2 = out.rbar * out.rbar;
+  const bool fluid = i >= c.nb;
+  for (std::uint32_t k = b; k < e; ++k) {
+    const std::uint32_t j = c.j[k];
+    const PairGeometry g = pair_geometry(c.domain, c.kernel, xi, c.x[j]);
+    const real w = c.vol[j];
+    const real inv_r = 1 / g.r;
+    const Vec2 eij = inv_r * g.rij;
+    const real dW = g.F * g.r;
+    grad_w[k] = (w * g.F) * (out.B * g.rij);
+    if (c.fatehi_manzari) {
+      const real weight = fm_pair_weight(out.Bhat, w, dW, eij);
+      lap_w[k] = weight * inv_r;
+      out.lap_esum += weight * eij;
+    } else {
+      lap_w[k] = morris_pair_weight(w, dW) * inv_r;
+    }
+    if (fluid) out.shift_direction += shifting_pair(rbar2, g.r, g.rij);
+  }
+  return out;
+}
+
+// ---- derivative sweeps (stored weights times gathered fields) -------------------------------
+
+/// Renormalized velocity gradient L_i = <grad V>_i (P.7, L_ab = d_a V_b) and the viscous
+/// Laplacian <lap V>_i (P.10 or P.8). Zero for dummies.
+PARTICULA_HD void velocity_derivatives_at(const SweepContext& c, std::size_t i, const Vec2* v, Mat2& L, Vec2& lap) {
+  L = Mat2{};
+  lap = Vec2{};
+  if (c.kind[i] == Kind::Dummy) return;
+  const Vec2 vi = v[i];
+  Vec2 a;
+  for (std::uint32_t k = c.start[i]; k < c.start[i + 1]; ++k) {
+    const Vec2 dv = v[c.j[k]] - vi;  // V_j - V_i
+    L += vector_gradient_pair(c.grad_w[k], dv);
+    a -= c.lap_w[k] * dv;            // lap_w (V_i - V_j)
+  }
+  lap = a - c.lap_esum[i] * L;
+}
+
+/// <grad P>_i / rho_i with the renormalized gradient (P.7).
+PARTICULA_HD Vec2 pressure_gradient_at(const SweepContext& c, std::size_t i, const real* p, const real* rho) {
+  Vec2 g;
+  const real pi = p[i];
+  for (std::uint32_t k = c.start[i]; k < c.start[i + 1]; ++k) g += gradient_pair(c.grad_w[k], p[c.j[k]] - pi);
+  return g / rho[i];
+}
+
+/// The Rhie-Chow bracket of the modified continuity equation (P.13-P.16):
+///   <div <grad P/rho>>_i - <div (grad P/rho)>_i,
+/// the first-derivative scheme applied twice minus the second-derivative scheme applied once
+/// (to P with the pair-averaged density). `G` holds <grad P>/rho of every particle. Zero for dummies.
+PARTICULA_HD real rhie_chow_at(const SweepContext& c, std::size_t i, const real* p, const real* rho, const Vec2* G) {
+  if (c.kind[i] == Kind::Dummy) return 0;
+  const Vec2 Gi = G[i];
+  const real pi = p[i], rhoi = rho[i];
+  real div_g = 0, lap_p = 0;
+  for (std::uint32_t k = c.start[i]; k < c.start[i + 1]; ++k) {
+    const std::uint32_t j = c.j[k];
+    div_g += dot(c.grad_w[k], G[j] - Gi);
+    lap_p += c.lap_w[k] * ((pi - p[j]) / (0.5 * (rhoi + rho[j])));
+  }
+  return div_g - (lap_p - dot(c.lap_esum[i], Gi));
+}
+
+/// P.20 for boundary particle i: the pressure that makes the normal momentum balance hold at
+/// the wall, from the neighbours' pressures, the surface acceleration `a`, nu <lap V>_i and the
+/// body force `f` kept in the fluid. Returns false (p_out untouched) when it is undefined.
+PARTICULA_HD bool wall_pressure_at(const SweepContext& c, std::size_t i, const real* p, const real* rho, Vec2 n,
+                                   Vec2 a, Vec2 nu_lap_v, Vec2 f, real& p_out) {
+  WallPressureSums s;
+  const real rhoi = rho[i];
+  for (std::uint32_t k = c.start[i]; k < c.start[i + 1]; ++k) {
+    const std::uint32_t j = c.j[k];
+    wall_pressure_pair(s, c.grad_w[k], n, p[j], 0.5 * (rhoi + rho[j]), j >= c.nb);
+  }
+  return wall_pressure(s, a, nu_lap_v, f, n, p_out);
+}
+
+// ---- rigid surfaces ------------------------------------------------------------------------
+
+/// Pose and motion of a rigid group as the per-particle functions need them (a plain struct
+/// that can be copied to the device).
+struct GroupMotion {
+  Vec2 pos, vel, acc;
+  real cos_angle = 1, sin_angle = 0, omega = 0, alpha = 0;
+};
+
+/// Surface particle position from the group's pose (exact rigid placement, never x += dt u).
+PARTICULA_HD Vec2 surface_position(const Domain& domain, const GroupMotion& g, Vec2 local) {
+  return domain.wrap(g.pos + rotate(local, g.cos_angle, g.sin_angle));
+}
+
+/// Velocity V + Omega x R and acceleration a + alpha x R - Omega^2 R of a surface point at
+/// body-frame offset `local` (R = rotated offset); the acceleration feeds P.20.
+PARTICULA_HD void surface_kinematics(const GroupMotion& g, Vec2 local, Vec2& v, Vec2& a) {
+  const Vec2 R = rotate(local, g.cos_angle, g.sin_angle);
+  v = g.vel + cross(g.omega, R);
+  a = g.acc + cross(g.alpha, R) - (g.omega * g.omega) * R;
+}
+
+/// Surface traction of boundary particle i times its length dS (P.26-P.27), split into the
+/// pressure part -P n dS and the viscous part n . tau dS with tau = mu (L + L^T).
+PARTICULA_HD void surface_traction(real p, real ds, Vec2 n, const Mat2& L, real mu, Vec2& tp, Vec2& tv) {
+  const Mat2 tau = mu * (L + transpose(L));
+  tp = (-p * ds) * n;
+  tv = ds * (n * tau);
+}
+
+}  // namespace particula
