@@ -3,7 +3,7 @@
 // seconds, particle-steps per second and the per-phase breakdown of Solver::phase_times().
 //
 //   particula_bench_e2e [--case FILE] [--d0 M] [--steps N] [--warmup N] [--threads N]
-//                       [--set key=value]...
+//                       [--backend cpu|cuda] [--set key=value]...
 //
 // Output is one human-readable block and one machine-readable line starting with "RESULT".
 #include <omp.h>
@@ -26,13 +26,14 @@ struct Options {
   std::string case_file = std::string(PARTICULA_SOURCE_DIR) + "/cases/falling_cylinder.toml";
   std::string d0;  // empty: the case file's
   int steps = 50, warmup = 3, threads = 0;
+  bool cuda = false;
   std::vector<std::string> overrides;
 };
 
 [[noreturn]] void usage(const char* msg) {
   std::fprintf(stderr,
                "error: %s\nusage: particula_bench_e2e [--case FILE] [--d0 M] [--steps N] [--warmup N] "
-               "[--threads N] [--set key=value]...\n",
+               "[--threads N] [--backend cpu|cuda] [--set key=value]...\n",
                msg);
   std::exit(2);
 }
@@ -51,6 +52,11 @@ Options parse(int argc, char** argv) {
     else if (arg == "--warmup") o.warmup = std::atoi(value().c_str());
     else if (arg == "--threads") o.threads = std::atoi(value().c_str());
     else if (arg == "--set") o.overrides.push_back(value());
+    else if (arg == "--backend") {
+      const std::string b = value();
+      if (b != "cpu" && b != "cuda") usage("--backend is cpu or cuda");
+      o.cuda = b == "cuda";
+    }
     else usage(("unknown argument " + arg).c_str());
   }
   if (o.steps < 1 || o.warmup < 0) usage("--steps must be >= 1 and --warmup >= 0");
@@ -84,6 +90,7 @@ int main(int argc, char** argv) {
   }
   const auto t_setup = std::chrono::steady_clock::now();
   Scene scene = build_scene(c);
+  scene.params.cuda = o.cuda;
   Solver solver(scene.params, scene.domain, std::move(scene.particles), scene.groups);
   const double setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count();
   for (int s = 0; s < o.warmup; ++s)
@@ -100,13 +107,13 @@ int main(int argc, char** argv) {
     }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const PhaseTimes p = minus(solver.phase_times(), before);
-  const double n = static_cast<double>(solver.particles().size());
+  const double n = static_cast<double>(solver.particle_count());
   const double rate = n * o.steps / wall;
   const int threads = omp_get_max_threads();
   std::printf("case              %s, d0 = %g m\n", c.name.c_str(), c.d0);
   std::printf("particles         %.0f (%zu pairs, %.1f per particle)\n", n, solver.last_pair_count(),
               static_cast<double>(solver.last_pair_count()) / n);
-  std::printf("threads           %d (backend cpu)\n", threads);
+  std::printf("threads           %d (backend %s)\n", threads, solver.backend_name());
   std::printf("setup             %.3f s\n", setup_s);
   std::printf("steps             %d (after %d warm-up)\n", o.steps, o.warmup);
   std::printf("wall              %.3f s (%.4g s per step)\n", wall, wall / o.steps);
@@ -125,9 +132,9 @@ int main(int argc, char** argv) {
   line("shifting", p.shifting);
   std::printf("  %-15s %.5f  (outside the timed phases: %.5f)\n", "total", tot / o.steps, (wall - tot) / o.steps);
   std::printf(
-      "RESULT case=%s d0=%g backend=cpu threads=%d particles=%.0f steps=%d wall_s=%.4f particle_steps_per_s=%.4g "
+      "RESULT case=%s d0=%g backend=%s threads=%d particles=%.0f steps=%d wall_s=%.4f particle_steps_per_s=%.4g "
       "neighbors=%.4f geometry=%.4f operators=%.4f wall_pressure=%.4f bodies=%.4f integration=%.4f shifting=%.4f\n",
-      c.name.c_str(), c.d0, threads, n, o.steps, wall, rate, p.neighbors, p.geometry, p.operators, p.wall_pressure,
+      c.name.c_str(), c.d0, solver.backend_name(), threads, n, o.steps, wall, rate, p.neighbors, p.geometry, p.operators, p.wall_pressure,
       p.bodies, p.integration, p.shifting);
   return 0;
 }

@@ -15,14 +15,14 @@ int main(int argc, char** argv) {
 
   particula::RunOptions run_opt;
   std::string run_case;
-  std::string backend = "cpu";
   bool no_plots = false;
   auto* run = app.add_subcommand("run", "Run a case file and write its run directory");
   run->add_option("case", run_case, "Case file (TOML)")->required();
   run->add_option("--out", run_opt.out_dir, "Run directory (default runs/<case name>)");
   run->add_option("--set", run_opt.overrides, "Override a case key, e.g. --set resolution.d0=5e-5 (repeatable)");
   run->add_option("--threads", run_opt.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 4096));
-  run->add_option("--backend", backend, "Compute backend")->check(CLI::IsMember({"cpu"}));
+  run->add_option("--backend", run_opt.backend, "Compute backend: cpu (OpenMP) or cuda (GPU; needs a CUDA build)")
+      ->check(CLI::IsMember({"cpu", "cuda"}));
   run->add_flag("--quiet", run_opt.quiet, "No progress line");
   run->add_flag("--no-plots", no_plots, "Do not draw plots at the end of the run");
   run->add_flag("--overwrite", run_opt.overwrite, "Replace an existing run directory");
@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
                      "Override time.end or an output.* key, e.g. --set time.end=3 (repeatable)");
   resume->add_option("--threads", resume_opt.threads, "OpenMP threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
+  resume->add_option("--backend", resume_opt.backend, "Compute backend: cpu or cuda")
+      ->check(CLI::IsMember({"cpu", "cuda"}));
   resume->add_flag("--quiet", resume_opt.quiet, "No progress line");
   resume->add_flag("--no-plots", resume_no_plots, "Do not draw plots at the end of the run");
 

@@ -21,6 +21,7 @@
 #include "particula/run/observers.hpp"
 #include "particula/run/plots.hpp"
 #include "particula/scene/scene.hpp"
+#include "particula/solver/device_backend.hpp"
 
 namespace particula {
 
@@ -140,7 +141,7 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
       break;
     }
     const auto failure = solver.step(out.next_event(c.t_end) - solver.time());
-    particle_steps += static_cast<double>(solver.particles().size());
+    particle_steps += static_cast<double>(solver.particle_count());
     interactions += static_cast<double>(solver.last_pair_count());
     if (failure) {
       out.write(solver, true);
@@ -180,7 +181,8 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   io::JsonObject summary;
   summary.set("case", c.name);
   summary.set("status", status);
-  summary.set("particles", static_cast<std::int64_t>(solver.particles().size()));
+  summary.set("particles", static_cast<std::int64_t>(solver.particle_count()));
+  summary.set("backend", std::string(solver.backend_name()));
   summary.set("fluid_particles", static_cast<std::int64_t>(s.n_fluid));
   summary.set("steps", solver.step_count());
   summary.set("end_time", solver.time());
@@ -236,8 +238,19 @@ int bad_input(const std::exception& e) {
 
 }  // namespace
 
+/// Checks that the requested backend exists here (before anything is written).
+bool backend_usable(const std::string& backend) {
+  if (backend == "cpu") return true;
+  std::string why;
+  if (backend == "cuda" && cuda_backend_available(&why)) return true;
+  std::fprintf(stderr, "error: --backend %s: %s\n", backend.c_str(),
+               backend == "cuda" ? why.c_str() : "unknown backend (cpu or cuda)");
+  return false;
+}
+
 int run_command(const fs::path& case_file, const RunOptions& opt) {
   Session s;
+  if (!backend_usable(opt.backend)) return 2;
   try {
     s.c = load_case(case_file, opt.overrides);
     check_case_size(s.c);  // before anything is allocated or written
@@ -253,9 +266,10 @@ int run_command(const fs::path& case_file, const RunOptions& opt) {
     io::write_file_atomic(s.dir / "case.toml", resolved_case_toml(s.c));
     Scene scene = build_scene(s.c);
     s.n_fluid = scene.particles.size() - scene.particles.n_boundary;
-    rep.say(fmt::format("particula: case '{}' from {}, {} particles ({} fluid, {} boundary), {} threads", s.c.name,
-                        case_file.string(), scene.particles.size(), s.n_fluid, scene.particles.n_boundary,
-                        omp_get_max_threads()));
+    rep.say(fmt::format("particula: case '{}' from {}, {} particles ({} fluid, {} boundary), {} threads, backend {}",
+                        s.c.name, case_file.string(), scene.particles.size(), s.n_fluid, scene.particles.n_boundary,
+                        omp_get_max_threads(), opt.backend));
+    scene.params.cuda = opt.backend == "cuda";
     s.solver = std::make_unique<Solver>(scene.params, scene.domain, std::move(scene.particles), std::move(scene.groups));
     s.outputs = std::make_unique<RunOutputs>(s.dir, s.c);
     return run_loop(s, rep, opt.plots);
@@ -280,6 +294,7 @@ int resume_command(const ResumeOptions& opt) {
                    o.c_str());
       return 2;
     }
+  if (!backend_usable(opt.backend)) return 2;
   const fs::path file = checkpoint_path(opt.run_dir);
   std::error_code ec;
   if (!fs::is_directory(opt.run_dir, ec)) {
@@ -318,7 +333,9 @@ int resume_command(const ResumeOptions& opt) {
                         "{} threads",
                         s.c.name, s.dir.string(), k.time, k.step, P.size(), s.c.t_end, omp_get_max_threads()));
     const Domain domain{s.c.domain_min, s.c.domain_max, s.c.periodic_x, s.c.periodic_y};
-    s.solver = std::make_unique<Solver>(physics_params(s.c), domain, std::move(k.particles), std::move(k.groups),
+    PhysicsParams prm = physics_params(s.c);
+    prm.cuda = opt.backend == "cuda";
+    s.solver = std::make_unique<Solver>(prm, domain, std::move(k.particles), std::move(k.groups),
                                         SolverStart::Restart, k.time, k.step);
     s.solver->set_counters(k.counters);
     s.outputs = std::make_unique<RunOutputs>(s.dir, s.c, k.marks, k.time);

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numeric>
 #include <type_traits>
+#include <utility>
 
 #include "particula/bodies/collision.hpp"
 #include "particula/bodies/rigid_motion.hpp"
@@ -21,16 +22,70 @@ Solver::Solver(PhysicsParams params, Domain domain, Particles particles, std::ve
     : prm_(params), domain_(domain), P_(std::move(particles)), groups_(std::move(groups)), kernel_(params.h),
       t_(t0), steps_(step0) {
   grid_.setup(domain_, prm_.h);
-  if (start == SolverStart::Restart) return;  // the checkpoint holds positions, pressures, everything
-  place_boundary(t_);
-  refresh_geometry();
-  // Initial wall pressure consistent with the initial fluid state (P.20): iterate the Jacobi
-  // sweeps to convergence once, since boundary particles start without a pressure.
-  compute_velocity_derivatives(P_.v);
-  const int sweeps = prm_.wall_pressure_sweeps;
-  prm_.wall_pressure_sweeps = 50;
-  boundary_pressure();
-  prm_.wall_pressure_sweeps = sweeps;
+  if (start == SolverStart::Fresh) {
+    place_boundary(t_);
+    refresh_geometry();
+    // Initial wall pressure consistent with the initial fluid state (P.20): iterate the Jacobi
+    // sweeps to convergence once, since boundary particles start without a pressure.
+    compute_velocity_derivatives(P_.v);
+    const int sweeps = prm_.wall_pressure_sweeps;
+    prm_.wall_pressure_sweeps = 50;
+    boundary_pressure();
+    prm_.wall_pressure_sweeps = sweeps;
+  }
+  // A restart takes the checkpointed state exactly as it is. The GPU backend starts from the
+  // host state prepared above; everything derived is recomputed at the start of each step.
+  if (prm_.cuda) {
+    dev_ = make_cuda_backend(prm_, grid_.geometry(), kernel_, P_);
+    dev_->upload(P_);
+  }
+}
+
+Solver::~Solver() = default;
+Solver::Solver(Solver&&) noexcept = default;
+Solver& Solver::operator=(Solver&&) noexcept = default;
+
+const Particles& Solver::particles() const {
+  if (!host_current_) {
+    dev_->download(P_);
+    host_current_ = true;
+  }
+  return P_;
+}
+
+Particles& Solver::particles() {
+  const Particles& p = std::as_const(*this).particles();
+  (void)p;
+  device_current_ = false;
+  return P_;
+}
+
+StageParams Solver::stage_params(real dt) const {
+  StageParams s;
+  s.dt = dt;
+  s.g_dt = prm_.rhie_chow_factor * dt;
+  s.nu = prm_.nu;
+  s.f = prm_.body_force + (prm_.gravity_in_fluid ? prm_.gravity : Vec2{});
+  s.rho0 = prm_.rho0;
+  s.c = prm_.c;
+  s.p0 = prm_.p0;
+  s.single_layer = prm_.single_layer;
+  return s;
+}
+
+HealthLimits Solver::health_limits() const {
+  HealthLimits l;
+  l.rho_lo = prm_.rho_min_ratio * prm_.rho0;
+  l.rho_hi = prm_.rho_max_ratio * prm_.rho0;
+  l.h = prm_.h;
+  l.domain = domain_;
+  return l;
+}
+
+const std::vector<GroupMotion>& Solver::group_motions() {
+  motions_.resize(groups_.size());
+  for (std::size_t k = 0; k < groups_.size(); ++k) motions_[k] = group_motion(groups_[k]);
+  return motions_;
 }
 
 namespace {
@@ -79,6 +134,10 @@ SweepContext Solver::sweep_context() const {
 }
 
 void Solver::refresh_geometry() {
+  if (dev_) {
+    dev_->refresh_geometry(counters_);
+    return;
+  }
   {
     PhaseTimer timer(times_.neighbors);
     build_neighbor_list(P_.x, domain_, kernel_, grid_, nl_);
@@ -158,30 +217,29 @@ void Solver::compute_pressure_gradient(const std::vector<real>& p, const std::ve
   for (std::size_t i = 0; i < n; ++i) G_[i] = pressure_gradient_at(c, i, p.data(), rho.data());
 }
 
-void Solver::rhie_chow_and_momentum(const std::vector<Vec2>& v_start, real dt) {
+void Solver::rhie_chow_and_momentum(StageStart from, const StageParams& sp) {
+  if (dev_) return dev_->rhie_chow_and_momentum(from, sp);
   const std::size_t n = P_.size(), nb = P_.n_boundary;
   rc_.resize(n);
   const SweepContext c = sweep_context();
-  const Vec2 f = prm_.body_force + (prm_.gravity_in_fluid ? prm_.gravity : Vec2{});
-  const real nu = prm_.nu;
+  const std::vector<Vec2>& v_start = from == StageStart::StepStart ? v_n_ : v_s_;
   // The sweep reads P, rho and G of the neighbours and writes only V_i of fluid particles,
   // which it does not read: fusing the momentum stage into it is race-free.
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     rc_[i] = rhie_chow_at(c, i, P_.p.data(), P_.rho.data(), G_.data());
-    if (i >= nb) P_.v[i] = v_start[i] + dt * momentum_rate(G_[i], lapV_[i], nu, f);
+    if (i >= nb) P_.v[i] = momentum_stage(v_start[i], G_[i], lapV_[i], sp);
   }
 }
 
-void Solver::derivatives_and_continuity(const std::vector<real>& rho_start, real dt) {
-  const std::size_t n = P_.size();
+void Solver::derivatives_and_continuity(StageStart from, const StageParams& sp) {
+  if (dev_) return dev_->derivatives_and_continuity(from, sp);
+  const std::size_t n = P_.size(), nb = P_.n_boundary;
   gradV_.resize(n);
   lapV_.resize(n);
   div_v_.resize(n);
   const SweepContext c = sweep_context();
-  const real g_dt = prm_.rhie_chow_factor * dt;
-  // In the dummy baseline, surface particles evolve their density like fluid particles.
-  const std::size_t first_evolved = prm_.single_layer ? P_.n_boundary : 0;
+  const std::vector<real>& rho_start = from == StageStart::StepStart ? rho_n_ : rho_s_;
   // The derivative sweep reads V and the frozen volumes, never rho or P: the continuity stage of
   // particle i can follow its own derivatives in the same loop.
 #pragma omp parallel for schedule(static)
@@ -192,10 +250,8 @@ void Solver::derivatives_and_continuity(const std::vector<real>& rho_start, real
     gradV_[i] = L;
     lapV_[i] = lap;
     div_v_[i] = trace(L);
-    if (i >= first_evolved && P_.kind[i] != Kind::Dummy) {
-      P_.rho[i] = rho_start[i] + dt * continuity_rate(rho_start[i], div_v_[i], g_dt, rc_[i]);
-      P_.p[i] = equation_of_state(P_.rho[i], prm_.rho0, prm_.c, prm_.p0);
-    }
+    if (evolves_density(i, nb, P_.kind[i], sp.single_layer))
+      continuity_stage(rho_start[i], div_v_[i], rc_[i], sp, P_.rho[i], P_.p[i]);
   }
 }
 
@@ -216,6 +272,7 @@ GroupMotion Solver::group_motion(const RigidGroup& g) const {
 
 void Solver::place_boundary(real t) {
   (void)t;  // group poses are advanced by body_update
+  if (dev_) return dev_->surface_motion(group_motions(), true);
   for (auto& g : groups_) {
     const GroupMotion m = group_motion(g);
     for (std::size_t i = g.first; i < g.first + g.count; ++i) {
@@ -228,6 +285,7 @@ void Solver::place_boundary(real t) {
 }
 
 void Solver::set_boundary_kinematics() {
+  if (dev_) return dev_->surface_motion(group_motions(), false);
   for (const auto& g : groups_) {
     const GroupMotion m = group_motion(g);
     for (std::size_t i = g.first; i < g.first + g.count; ++i) surface_kinematics(m, P_.local[i], P_.v[i], P_.acc[i]);
@@ -238,6 +296,7 @@ void Solver::boundary_pressure() {
   PhaseTimer timer(times_.wall_pressure);
   const std::size_t nb = P_.n_boundary;
   if (nb == 0) return;
+  if (dev_) return dev_->boundary_pressure(prm_.wall_pressure_sweeps, stage_params(dt_), counters_);
   if (!prm_.single_layer) {
     // Dummy-particle baseline: surface particles evolve rho by continuity (done by the
     // stages); dummies copy P and rho of their nearest surface particle.
@@ -271,6 +330,15 @@ void Solver::boundary_pressure() {
 
 void Solver::group_loads() {
   const real mu = prm_.nu * prm_.rho0;
+  if (dev_) {
+    dev_->group_loads(groups_, mu, loads_);
+    for (std::size_t k = 0; k < groups_.size(); ++k) {
+      groups_[k].force_pressure = loads_[k].force_pressure;
+      groups_[k].force_viscous = loads_[k].force_viscous;
+      groups_[k].torque = loads_[k].torque;
+    }
+    return;
+  }
   for (auto& g : groups_) {
     Vec2 fp, fv;
     real torque = 0;
@@ -292,6 +360,7 @@ void Solver::group_loads() {
 // Time step
 
 real Solver::max_speed() const {
+  if (dev_) return dev_->max_speed();
   real vmax2 = 0;
   const std::size_t n = P_.size();
 #pragma omp parallel for schedule(static) reduction(max : vmax2)
@@ -300,7 +369,8 @@ real Solver::max_speed() const {
 }
 
 real Solver::stable_dt() const {
-  const real dmin = nl_.min_distance > 0 && std::isfinite(nl_.min_distance) ? nl_.min_distance : prm_.d0;
+  const real dlist = dev_ ? dev_->min_distance() : nl_.min_distance;
+  const real dmin = dlist > 0 && std::isfinite(dlist) ? dlist : prm_.d0;
   const real vmax = max_speed();
   real dt = prm_.cfl * dmin / (prm_.c + vmax);  // P.30: Courant condition
   if (prm_.nu > 0) dt = std::min(dt, prm_.cfl * dmin * dmin / prm_.nu);  // P.31: viscous diffusion
@@ -309,11 +379,22 @@ real Solver::stable_dt() const {
 }
 
 std::optional<Failure> Solver::step(real dt_cap) {
+  if (dev_ && !device_current_) {
+    dev_->upload(P_);
+    device_current_ = true;
+  }
   if (prm_.reorder_interval > 0 && steps_ % prm_.reorder_interval == 0) {
     PhaseTimer timer(times_.neighbors);
-    reorder_fluid();
+    if (dev_) dev_->reorder_fluid();
+    else reorder_fluid();
   }
-  refresh_geometry();
+  if (dev_) {
+    PhaseTimer timer(times_.geometry);
+    dev_->refresh_geometry(counters_);
+    host_current_ = false;
+  } else {
+    refresh_geometry();
+  }
   {
     PhaseTimer timer(times_.bodies);
     if (auto f = collisions()) return f;
@@ -324,11 +405,9 @@ std::optional<Failure> Solver::step(real dt_cap) {
     if (dt_cap > 0) dt_ = std::min(dt_, dt_cap);
   }
   const real dt = dt_;
-  const std::size_t n = P_.size(), nb = P_.n_boundary;
+  const StageParams sp = stage_params(dt);
 
-  v_n_ = P_.v;
-  rho_n_ = P_.rho;
-  p_n_ = P_.p;
+  save_stage_start(StageStart::StepStart);
   std::vector<Vec2>& gv0 = group_v0_;
   std::vector<real>& gw0 = group_w0_;
   gv0.resize(groups_.size());
@@ -350,33 +429,36 @@ std::optional<Failure> Solver::step(real dt_cap) {
   //      rho* = rho^n + dt D(V*, P^n) (continuity uses the new velocity)
   {
     PhaseTimer timer(times_.operators);
-    derivatives_sweep(P_.v, &G_);
-    gradV_n_ = gradV_;
-    rhie_chow_and_momentum(v_n_, dt);
+    if (dev_) {
+      dev_->start_of_step_derivatives();
+    } else {
+      derivatives_sweep(P_.v, &G_);
+      gradV_n_ = gradV_;
+    }
+    rhie_chow_and_momentum(StageStart::StepStart, sp);
   }
   bodies_stage();
   {
     PhaseTimer timer(times_.operators);
-    derivatives_and_continuity(rho_n_, dt);
+    derivatives_and_continuity(StageStart::StepStart, sp);
   }
   boundary_pressure();
 
   // ---- corrector: V** = V* + dt A(V*, P*); bodies likewise; rho** = rho* + dt D(V**, P*)
-  v_s_ = P_.v;
-  rho_s_ = P_.rho;
+  save_stage_start(StageStart::Predicted);
   for (std::size_t k = 0; k < groups_.size(); ++k) {
     gv0[k] = groups_[k].vel;
     gw0[k] = groups_[k].omega;
   }
   {
     PhaseTimer timer(times_.operators);
-    compute_pressure_gradient(P_.p, P_.rho);
-    rhie_chow_and_momentum(v_s_, dt);
+    pressure_gradient();
+    rhie_chow_and_momentum(StageStart::Predicted, sp);
   }
   bodies_stage();
   {
     PhaseTimer timer(times_.operators);
-    derivatives_and_continuity(rho_s_, dt);
+    derivatives_and_continuity(StageStart::Predicted, sp);
   }
   boundary_pressure();
 
@@ -384,18 +466,7 @@ std::optional<Failure> Solver::step(real dt_cap) {
   real vmax2 = 0;
   {
     PhaseTimer timer(times_.integration);
-#pragma omp parallel for schedule(static) reduction(max : vmax2)
-    for (std::size_t i = 0; i < n; ++i) {
-      if (i >= nb) {
-        P_.v[i] = 0.5 * (P_.v[i] + v_n_[i]);
-        P_.x[i] = domain_.wrap(P_.x[i] + dt * P_.v[i]);
-      }
-      if (i >= nb || prm_.single_layer || P_.kind[i] != Kind::Dummy) {
-        P_.rho[i] = 0.5 * (P_.rho[i] + rho_n_[i]);
-        P_.p[i] = 0.5 * (P_.p[i] + p_n_[i]);
-      }
-      vmax2 = std::max(vmax2, norm2(P_.v[i]));
-    }
+    vmax2 = end_of_step(dt);
   }
   if (!prm_.single_layer) boundary_pressure();  // dummies copy the averaged surface values
   t_ += dt;
@@ -409,12 +480,39 @@ std::optional<Failure> Solver::step(real dt_cap) {
   // ---- particle shifting (P.33-P.36), with the step's geometry and the new fields
   if (prm_.shifting_beta > 0) {
     PhaseTimer timer(times_.shifting);
-    // <grad P>/rho of the new pressures with the step's geometry (the stored pair weights).
-    compute_pressure_gradient(P_.p, P_.rho);
     shift_particles(dt, std::sqrt(vmax2));
   }
   PhaseTimer timer(times_.integration);
   return check_health();
+}
+
+void Solver::save_stage_start(StageStart which) {
+  if (dev_) return dev_->save_stage_start(which);
+  if (which == StageStart::StepStart) {
+    v_n_ = P_.v;
+    rho_n_ = P_.rho;
+    p_n_ = P_.p;
+  } else {
+    v_s_ = P_.v;
+    rho_s_ = P_.rho;
+  }
+}
+
+void Solver::pressure_gradient() {
+  if (dev_) return dev_->pressure_gradient();
+  compute_pressure_gradient(P_.p, P_.rho);
+}
+
+real Solver::end_of_step(real dt) {
+  if (dev_) return dev_->end_of_step(dt, prm_.single_layer);
+  const std::size_t n = P_.size(), nb = P_.n_boundary;
+  const bool single_layer = prm_.single_layer;
+  real vmax2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : vmax2)
+  for (std::size_t i = 0; i < n; ++i)
+    vmax2 = std::max(vmax2, end_of_step_update(i, nb, P_.kind[i], domain_, dt, single_layer, v_n_[i], rho_n_[i],
+                                               p_n_[i], P_.x[i], P_.v[i], P_.rho[i], P_.p[i]));
+  return vmax2;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -514,21 +612,18 @@ std::optional<Failure> Solver::collisions() {
 }
 
 void Solver::shift_particles(real dt, real vmax) {
-  const std::size_t n = P_.size(), nb = P_.n_boundary;
   const real scale = prm_.shifting_beta * vmax * dt;
-  // The Taylor corrections use the step's mean velocity gradient (stage start and end).
+  if (dev_) return dev_->shift(scale, prm_.c);
+  const std::size_t n = P_.size(), nb = P_.n_boundary;
+  // <grad P>/rho of the new pressures with the step's geometry (the stored pair weights), and
+  // the step's mean velocity gradient (stage start and end) for the Taylor corrections.
+  compute_pressure_gradient(P_.p, P_.rho);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) gradV_[i] = 0.5 * (gradV_[i] + gradV_n_[i]);
   if (!(scale > 0)) return;
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = nb; i < n; ++i) {
-    const Vec2 dr = scale * shift_dir_[i];       // P.33, direction from the geometry sweep
-    P_.x[i] = domain_.wrap(P_.x[i] + dr);
-    P_.v[i] += dr * gradV_[i];                   // P.34
-    const real dp = P_.rho[i] * dot(dr, G_[i]);  // P.35: rho dr . <grad P / rho>
-    P_.p[i] += dp;
-    P_.rho[i] += dp / (prm_.c * prm_.c);         // P.36
-  }
+  for (std::size_t i = nb; i < n; ++i)
+    shift_particle(shift_dir_[i], scale, gradV_[i], G_[i], domain_, prm_.c, P_.x[i], P_.v[i], P_.p[i], P_.rho[i]);
 }
 
 void Solver::reorder_fluid() {
@@ -558,24 +653,21 @@ void Solver::reorder_fluid() {
 }
 
 std::optional<Failure> Solver::check_health() const {
-  const std::size_t n = P_.size();
-  const real lo = prm_.rho_min_ratio * prm_.rho0, hi = prm_.rho_max_ratio * prm_.rho0;
-  const real h = prm_.h;
+  const HealthLimits lim = health_limits();
+  const real lo = lim.rho_lo, hi = lim.rho_hi;
   std::int64_t worst = std::numeric_limits<std::int64_t>::max();
+  if (dev_) {
+    const std::int64_t id = dev_->unhealthy_id(lim);
+    if (id < 0) return std::nullopt;
+    worst = id;
+    particles();  // the host copy names the particle
+  } else {
+    const std::size_t n = P_.size();
 #pragma omp parallel for schedule(static) reduction(min : worst)
-  for (std::size_t i = 0; i < n; ++i) {
-    const bool finite = std::isfinite(P_.x[i].x) && std::isfinite(P_.x[i].y) && std::isfinite(P_.v[i].x) &&
-                        std::isfinite(P_.v[i].y) && std::isfinite(P_.rho[i]) && std::isfinite(P_.p[i]);
-    bool bad = !finite;
-    if (!bad && P_.is_fluid(i)) {
-      bad = P_.rho[i] < lo || P_.rho[i] > hi;
-      const Vec2 x = P_.x[i];
-      if (!domain_.periodic_x && (x.x < domain_.lo.x - h || x.x > domain_.hi.x + h)) bad = true;
-      if (!domain_.periodic_y && (x.y < domain_.lo.y - h || x.y > domain_.hi.y + h)) bad = true;
-    }
-    if (bad) worst = std::min(worst, P_.id[i]);
+    for (std::size_t i = 0; i < n; ++i)
+      if (particle_unhealthy(P_.is_fluid(i), P_.x[i], P_.v[i], P_.rho[i], P_.p[i], lim)) worst = std::min(worst, P_.id[i]);
+    if (worst == std::numeric_limits<std::int64_t>::max()) return std::nullopt;
   }
-  if (worst == std::numeric_limits<std::int64_t>::max()) return std::nullopt;
   std::size_t i = 0;
   while (P_.id[i] != worst) ++i;
   Failure f;

@@ -14,31 +14,86 @@
 
 namespace particula {
 
-/// Uniform grid of square-ish cells of side >= h covering the domain. Along a periodic axis
-/// the cell count is floor(L/h) (at least 3, so the 3 neighbouring cells are distinct);
-/// along a bounded axis one extra cell on each side catches particles slightly outside.
+/// Geometry of the uniform cell grid (square-ish cells of side >= h covering the domain), as a
+/// plain struct usable on the host and on the device. Along a periodic axis the cell count is
+/// floor(L/h) (at least 3, so the 3 neighbouring cells are distinct); along a bounded axis one
+/// extra cell on each side catches particles slightly outside.
+struct GridGeometry {
+  Domain domain;
+  Vec2 origin;
+  real cell_x = 1, cell_y = 1;
+  int nx = 1, ny = 1;
+
+  PARTICULA_HD int cell_count() const { return nx * ny; }
+
+  PARTICULA_HD int cell_index(Vec2 p) const {
+    int cx = static_cast<int>(std::floor((p.x - origin.x) / cell_x));
+    int cy = static_cast<int>(std::floor((p.y - origin.y) / cell_y));
+    // Clamping is 1-Lipschitz in cell index, so two particles within h of each other stay in
+    // the same or adjacent cells even when one has strayed outside the grid.
+    cx = cx < 0 ? 0 : (cx > nx - 1 ? nx - 1 : cx);
+    cy = cy < 0 ? 0 : (cy > ny - 1 ? ny - 1 : cy);
+    return cy * nx + cx;
+  }
+
+  /// The up-to-9 distinct cells around cell c (fewer at bounded edges), in a fixed order.
+  PARTICULA_HD int neighbor_cells(int c, int out[9]) const {
+    const int cx = c % nx, cy = c / nx;
+    int k = 0;
+    for (int dy = -1; dy <= 1; ++dy) {
+      int y = cy + dy;
+      if (domain.periodic_y) y = (y + ny) % ny;
+      else if (y < 0 || y >= ny) continue;
+      for (int dx = -1; dx <= 1; ++dx) {
+        int xx = cx + dx;
+        if (domain.periodic_x) xx = (xx + nx) % nx;
+        else if (xx < 0 || xx >= nx) continue;
+        out[k++] = y * nx + xx;
+      }
+    }
+    return k;
+  }
+};
+
+/// Calls emit(j, d2) for every neighbour j != i of particle i with |r_ij|^2 = d2 < h2, in a
+/// fixed order (cells in neighbor_cells order, particles in cell order), so the list and every
+/// sum over it are independent of the thread count and identical on the CPU and the GPU.
+/// `sorted` lists particle indices cell by cell, cell c being sorted[cell_start[c] .. cell_start[c+1]).
+template <class Emit>
+PARTICULA_HD void visit_neighbors(const GridGeometry& g, real h2, const Vec2* x, const std::uint32_t* sorted,
+                                  const std::uint32_t* cell_start, std::uint32_t cell_of_i, std::uint32_t i,
+                                  Emit&& emit) {
+  int cells[9];
+  const int nc = g.neighbor_cells(static_cast<int>(cell_of_i), cells);
+  const Vec2 xi = x[i];
+  for (int k = 0; k < nc; ++k)
+    for (std::uint32_t s = cell_start[cells[k]]; s < cell_start[cells[k] + 1]; ++s) {
+      const std::uint32_t j = sorted[s];
+      if (j == i) continue;
+      const real d2 = norm2(g.domain.separation(xi, x[j]));
+      if (d2 < h2) emit(j, d2);
+    }
+}
+
+/// The cell grid with its particle binning (host side).
 class CellGrid {
  public:
   void setup(const Domain& domain, real h);
-  /// Sorts particles [first, n) by cell (counting sort) and fills `order` with the sorted
-  /// indices; `cell_of` is refreshed for all n particles.
+  /// Bins all particles by cell (counting sort, stable in particle index).
   void bin(const std::vector<Vec2>& x);
 
-  int nx() const { return nx_; }
-  int ny() const { return ny_; }
-  int cell_index(Vec2 p) const;
+  const GridGeometry& geometry() const { return geo_; }
+  int nx() const { return geo_.nx; }
+  int ny() const { return geo_.ny; }
+  int cell_index(Vec2 p) const { return geo_.cell_index(p); }
   /// Particles of cell c are sorted_[start_[c] .. start_[c+1]).
   const std::vector<std::uint32_t>& sorted() const { return sorted_; }
   const std::vector<std::uint32_t>& cell_start() const { return start_; }
   const std::vector<std::uint32_t>& cell_of() const { return cell_of_; }
-  /// The up-to-9 distinct cells around cell c (fewer at bounded edges).
-  int neighbor_cells(int c, int out[9]) const;
+  int neighbor_cells(int c, int out[9]) const { return geo_.neighbor_cells(c, out); }
 
  private:
-  Domain domain_;
-  Vec2 origin_;
-  real cell_x_ = 1, cell_y_ = 1;
-  int nx_ = 1, ny_ = 1;
+  GridGeometry geo_;
   std::vector<std::uint32_t> start_, sorted_, cell_of_, fill_;
 };
 

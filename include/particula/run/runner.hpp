@@ -16,6 +16,7 @@ struct RunOptions {
   bool quiet = false;
   bool plots = true;  // draw plots at the end (tools/plot_run.py) when matplotlib is present
   int threads = 0;  // 0: OpenMP default
+  std::string backend = "cpu";  // "cpu" or "cuda"
   std::vector<std::string> overrides;
 };
 
@@ -26,6 +27,7 @@ struct ResumeOptions {
   bool quiet = false;
   bool plots = true;
   int threads = 0;
+  std::string backend = "cpu";  // "cpu" or "cuda" (a checkpoint resumes on either)
   /// Only time.end and output.* keys may change when resuming (anything else is exit 2).
   std::vector<std::string> overrides;
 };

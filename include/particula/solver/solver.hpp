@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "particula/geometry/shape.hpp"
 #include "particula/neighbors/domain.hpp"
 #include "particula/neighbors/neighbor_list.hpp"
+#include "particula/solver/device_backend.hpp"
 #include "particula/solver/particles.hpp"
 #include "particula/solver/rigid_group.hpp"
 #include "particula/solver/sweeps.hpp"
@@ -55,6 +57,7 @@ struct PhysicsParams {
   std::vector<WallLine> walls;
   real collision_stiffness = 0;  // k of P.38
   real collision_range = 0;      // eps of P.38 (m)
+  bool cuda = false;             // particle passes on the GPU (--backend cuda)
 };
 
 /// Counters of guarded events (written to the run log).
@@ -92,8 +95,13 @@ enum class SolverStart { Fresh, Restart };
 
 class Solver {
  public:
+  /// With params.cuda the particle passes run on the GPU (throws std::runtime_error when this
+  /// build or machine has none).
   Solver(PhysicsParams params, Domain domain, Particles particles, std::vector<RigidGroup> groups,
          SolverStart start = SolverStart::Fresh, real t0 = 0, std::int64_t step0 = 0);
+  ~Solver();
+  Solver(Solver&&) noexcept;
+  Solver& operator=(Solver&&) noexcept;
 
   /// Advances one full time step of at most `dt_cap` (used to land on output and end times).
   /// Returns the failure, if any, detected at its end.
@@ -102,14 +110,18 @@ class Solver {
   real time() const { return t_; }
   real last_dt() const { return dt_; }
   std::int64_t step_count() const { return steps_; }
-  const Particles& particles() const { return P_; }
-  Particles& particles() { return P_; }
+  /// The particle state (with the GPU backend, copied from the device when it changed).
+  const Particles& particles() const;
+  /// Mutable access: with the GPU backend the state is uploaded again before the next step.
+  Particles& particles();
+  std::size_t particle_count() const { return P_.size(); }
+  const char* backend_name() const { return dev_ ? "cuda" : "cpu"; }
   const std::vector<RigidGroup>& groups() const { return groups_; }
   const Domain& domain() const { return domain_; }
   const PhysicsParams& params() const { return prm_; }
   const SolverCounters& counters() const { return counters_; }
   const WendlandC2& kernel() const { return kernel_; }
-  std::size_t last_pair_count() const { return nl_.pair_count(); }
+  std::size_t last_pair_count() const { return dev_ ? dev_->pair_count() : nl_.pair_count(); }
   const PhaseTimes& phase_times() const { return times_; }
 
   /// Time step of P.29-P.31 for the current state (rebuilds nothing: uses the last list).
@@ -145,9 +157,9 @@ class Solver {
   /// Velocity derivatives of `v` and, when `G_out` is set, the pressure gradient, in one sweep.
   void derivatives_sweep(const std::vector<Vec2>& v, std::vector<Vec2>* G_out);
   /// Rhie-Chow bracket of the current P, then the fluid momentum stage V = V_start + dt A.
-  void rhie_chow_and_momentum(const std::vector<Vec2>& v_start, real dt);
+  void rhie_chow_and_momentum(StageStart from, const StageParams& sp);
   /// Velocity derivatives of the new V, then the continuity stage rho = rho_start + dt D.
-  void derivatives_and_continuity(const std::vector<real>& rho_start, real dt);
+  void derivatives_and_continuity(StageStart from, const StageParams& sp);
   void boundary_pressure();
   void group_loads();
   /// Collision forces of the step (positions frozen); a failure when solids interpenetrate.
@@ -162,9 +174,16 @@ class Solver {
   std::optional<Failure> check_health() const;
   real max_speed() const;
 
+  StageParams stage_params(real dt) const;
+  HealthLimits health_limits() const;
+  const std::vector<GroupMotion>& group_motions();
+  void save_stage_start(StageStart which);
+  void pressure_gradient();
+  real end_of_step(real dt);
+
   PhysicsParams prm_;
   Domain domain_;
-  Particles P_;
+  mutable Particles P_;
   std::vector<RigidGroup> groups_;
   WendlandC2 kernel_;
   CellGrid grid_;
@@ -183,6 +202,13 @@ class Solver {
   // per-pair weights of the geometry sweep (solver/sweeps.hpp)
   std::vector<Vec2> pair_grad_w_;
   std::vector<real> pair_lap_w_;
+  // GPU backend: the device holds the particle state; the host copy is refreshed on demand
+  std::unique_ptr<DeviceBackend> dev_;
+  mutable bool host_current_ = true;  // P_ equals the device state
+  bool device_current_ = true;         // the device state equals P_
+  std::vector<GroupLoads> loads_;
+  std::vector<GroupMotion> motions_;
+
   // reordering scratch
   std::vector<std::uint32_t> reorder_key_;
   std::vector<std::size_t> reorder_order_;

@@ -190,6 +190,85 @@ PARTICULA_HD bool wall_pressure_at(const SweepContext& c, std::size_t i, const r
   return wall_pressure(s, a, nu_lap_v, f, n, p_out);
 }
 
+// ---- pointwise updates of one particle ------------------------------------------------------
+
+/// Constants of the pointwise updates (a plain struct for host and device).
+struct StageParams {
+  real dt = 0;
+  real g_dt = 0;       // Rhie-Chow factor G times dt (P.16)
+  real nu = 0;
+  Vec2 f;              // body force, plus gravity when it is kept in the fluid
+  real rho0 = 1000, c = 0, p0 = 0;
+  bool single_layer = true;
+};
+
+/// Explicit momentum stage of a fluid particle: V = V_start + dt (-<grad P>/rho + nu <lap V> + f).
+PARTICULA_HD Vec2 momentum_stage(Vec2 v_start, Vec2 grad_p_over_rho, Vec2 lap_v, const StageParams& s) {
+  return v_start + s.dt * momentum_rate(grad_p_over_rho, lap_v, s.nu, s.f);
+}
+
+/// Whether particle i's density evolves by the continuity equation: fluid particles, and in the
+/// dummy baseline also the surface particles (the single-layer wall gets P from P.20 instead).
+PARTICULA_HD bool evolves_density(std::size_t i, std::size_t nb, Kind kind, bool single_layer) {
+  return (i >= nb || !single_layer) && kind != Kind::Dummy;
+}
+
+/// Modified continuity stage (P.13-P.16) and the equation of state: rho = rho_start + dt D, P(rho).
+PARTICULA_HD void continuity_stage(real rho_start, real div_v, real rhie_chow, const StageParams& s, real& rho,
+                                   real& p) {
+  rho = rho_start + s.dt * continuity_rate(rho_start, div_v, s.g_dt, rhie_chow);
+  p = equation_of_state(rho, s.rho0, s.c, s.p0);
+}
+
+/// End of step (P.28): fluid velocity and density the mean of the step-start and corrected
+/// values, position advanced with the new velocity. Returns |V|^2 for the shifting scale.
+PARTICULA_HD real end_of_step_update(std::size_t i, std::size_t nb, Kind kind, const Domain& domain, real dt,
+                                     bool single_layer, Vec2 v_n, real rho_n, real p_n, Vec2& x, Vec2& v, real& rho,
+                                     real& p) {
+  if (i >= nb) {
+    v = 0.5 * (v + v_n);
+    x = domain.wrap(x + dt * v);
+  }
+  if (i >= nb || single_layer || kind != Kind::Dummy) {
+    rho = 0.5 * (rho + rho_n);
+    p = 0.5 * (p + p_n);
+  }
+  return norm2(v);
+}
+
+/// Particle shifting of a fluid particle (P.33-P.36): displacement dr = beta V_max dt times the
+/// direction of the geometry sweep, with the first-order Taylor corrections of V, P and rho
+/// (using the step's mean velocity gradient and the new <grad P>/rho).
+PARTICULA_HD void shift_particle(Vec2 direction, real scale, const Mat2& grad_v, Vec2 grad_p_over_rho,
+                                 const Domain& domain, real c, Vec2& x, Vec2& v, real& p, real& rho) {
+  const Vec2 dr = scale * direction;             // P.33
+  x = domain.wrap(x + dr);
+  v += dr * grad_v;                              // P.34
+  const real dp = rho * dot(dr, grad_p_over_rho);  // P.35: rho dr . <grad P / rho>
+  p += dp;
+  rho += dp / (c * c);                           // P.36
+}
+
+/// Limits of a healthy state (exit 3 otherwise).
+struct HealthLimits {
+  real rho_lo = 0, rho_hi = 0, h = 0;
+  Domain domain;
+};
+
+/// Whether particle i is unhealthy: a non-finite value, or for a fluid particle a density
+/// outside the limits or a position outside a closed domain (by more than h).
+PARTICULA_HD bool particle_unhealthy(bool fluid, Vec2 x, Vec2 v, real rho, real p, const HealthLimits& l) {
+  const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(v.x) && std::isfinite(v.y) &&
+                      std::isfinite(rho) && std::isfinite(p);
+  if (!finite) return true;
+  if (!fluid) return false;
+  if (rho < l.rho_lo || rho > l.rho_hi) return true;
+  const Domain& d = l.domain;
+  if (!d.periodic_x && (x.x < d.lo.x - l.h || x.x > d.hi.x + l.h)) return true;
+  if (!d.periodic_y && (x.y < d.lo.y - l.h || x.y > d.hi.y + l.h)) return true;
+  return false;
+}
+
 // ---- rigid surfaces ------------------------------------------------------------------------
 
 /// Pose and motion of a rigid group as the per-particle functions need them (a plain struct

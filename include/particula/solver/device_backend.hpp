@@ -1,0 +1,85 @@
+// The GPU side of the solver (`--backend cuda`). The Solver keeps the time loop, the rigid
+// bodies (a few numbers each: forces, ODEs, collisions) and the host copy of the particles for
+// output and checkpoints; a DeviceBackend keeps the particle state on the GPU and runs every
+// per-particle pass there with the same PARTICULA_HD functions as the CPU loops
+// (solver/sweeps.hpp, neighbors/neighbor_list.hpp). Per stage only the group loads (down) and
+// the group poses and velocities (up) cross the bus, a few dozen bytes per body.
+//
+// This header is plain C++: the CUDA implementation lives in src/cuda/ and is compiled only
+// when the CUDA toolkit is found (CMake option PARTICULA_CUDA).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "particula/neighbors/neighbor_list.hpp"
+#include "particula/solver/particles.hpp"
+#include "particula/solver/rigid_group.hpp"
+#include "particula/solver/sweeps.hpp"
+
+namespace particula {
+
+struct PhysicsParams;
+struct SolverCounters;
+
+/// Which stage-start buffers a stage reads: the predictor starts from the step-start values
+/// (V^n, rho^n), the corrector from the predicted ones (V*, rho*).
+enum class StageStart { StepStart, Predicted };
+
+/// Loads of one rigid group as reduced on the device (P.26-P.27).
+struct GroupLoads {
+  Vec2 force_pressure, force_viscous;
+  real torque = 0;
+};
+
+class DeviceBackend {
+ public:
+  virtual ~DeviceBackend() = default;
+
+  /// Whole-state transfers (start, after the host changed the state, output, checkpoints).
+  virtual void upload(const Particles& P) = 0;
+  virtual void download(Particles& P) = 0;
+
+  /// Stable reorder of the fluid block by cell, as Solver::reorder_fluid.
+  virtual void reorder_fluid() = 0;
+  /// Neighbour list, volumes and the geometry sweep (counts guarded events into `cnt`).
+  virtual void refresh_geometry(SolverCounters& cnt) = 0;
+  virtual std::size_t pair_count() const = 0;
+  virtual real min_distance() const = 0;
+  virtual real max_speed() = 0;
+
+  /// V^n, rho^n, P^n (StepStart) or V*, rho* (Predicted) := the current values.
+  virtual void save_stage_start(StageStart which) = 0;
+  /// Velocity derivatives of the current V and the pressure gradient, in one sweep; keeps
+  /// grad V as the step-start gradient for shifting.
+  virtual void start_of_step_derivatives() = 0;
+  virtual void pressure_gradient() = 0;
+  virtual void rhie_chow_and_momentum(StageStart from, const StageParams& s) = 0;
+  virtual void derivatives_and_continuity(StageStart from, const StageParams& s) = 0;
+  virtual void boundary_pressure(int sweeps, const StageParams& s, SolverCounters& cnt) = 0;
+
+  /// Loads of every group (pressure and viscous parts, torque about its position).
+  virtual void group_loads(const std::vector<RigidGroup>& groups, real mu, std::vector<GroupLoads>& out) = 0;
+  /// Surface particle velocities and accelerations from the group motions; with `place`, also
+  /// positions and analytic normals.
+  virtual void surface_motion(const std::vector<GroupMotion>& motions, bool place) = 0;
+
+  /// End-of-step averages (P.28); returns max |V|^2.
+  virtual real end_of_step(real dt, bool single_layer) = 0;
+  /// Mean velocity gradient of the step, new pressure gradient, shift with `scale` = beta V_max dt.
+  virtual void shift(real scale, real c) = 0;
+  /// Smallest id of an unhealthy particle, or -1.
+  virtual std::int64_t unhealthy_id(const HealthLimits& limits) = 0;
+};
+
+/// Whether this build has a CUDA backend and a GPU to run it on; `why` says what is missing.
+bool cuda_backend_available(std::string* why);
+
+/// The CUDA backend for the given physics and grid (throws std::runtime_error when this build
+/// has none or no GPU is present).
+std::unique_ptr<DeviceBackend> make_cuda_backend(const PhysicsParams& prm, const GridGeometry& grid,
+                                                 const WendlandC2& kernel, const Particles& P);
+
+}  // namespace particula

@@ -1,0 +1,603 @@
+// The CUDA backend (`--backend cuda`): the particle state lives on the GPU and every
+// per-particle pass is a kernel that calls the same PARTICULA_HD function as the CPU loop in
+// src/solver/solver.cpp (solver/sweeps.hpp for the physics, neighbors/neighbor_list.hpp for
+// the search). One thread per particle; every neighbour sum is a gather in list order, and the
+// list is built in the CPU's order (cells sorted stably by index, neighbour cells in the same
+// order), so the GPU computes the same sums in the same order as the CPU.
+#include <cuda_runtime.h>
+#include <thrust/binary_search.h>
+#include <thrust/device_ptr.h>
+#include <thrust/execution_policy.h>
+#include <thrust/functional.h>
+#include <thrust/iterator/counting_iterator.h>
+#include <thrust/reduce.h>
+#include <thrust/scan.h>
+#include <thrust/sequence.h>
+#include <thrust/sort.h>
+#include <thrust/transform_reduce.h>
+
+#include <climits>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include "particula/solver/device_backend.hpp"
+#include "particula/solver/solver.hpp"
+
+namespace particula {
+
+namespace {
+
+void check(cudaError_t e, const char* what) {
+  if (e != cudaSuccess) throw std::runtime_error(std::string("CUDA error in ") + what + ": " + cudaGetErrorString(e));
+}
+
+/// A device array that only grows (no allocation once the sizes have settled).
+template <class T>
+class DArray {
+ public:
+  DArray() = default;
+  DArray(const DArray&) = delete;
+  DArray& operator=(const DArray&) = delete;
+  ~DArray() {
+    if (p_) cudaFree(p_);
+  }
+  void resize(std::size_t n) {
+    if (n > cap_) {
+      if (p_) check(cudaFree(p_), "cudaFree");
+      p_ = nullptr;
+      check(cudaMalloc(&p_, std::max<std::size_t>(n, 1) * sizeof(T)), "cudaMalloc");
+      cap_ = n;
+    }
+    n_ = n;
+  }
+  T* data() { return p_; }
+  const T* data() const { return p_; }
+  std::size_t size() const { return n_; }
+  void upload(const std::vector<T>& v) {
+    resize(v.size());
+    if (!v.empty()) check(cudaMemcpy(p_, v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice), "upload");
+  }
+  void download(std::vector<T>& v) const {
+    v.resize(n_);
+    if (n_) check(cudaMemcpy(v.data(), p_, n_ * sizeof(T), cudaMemcpyDeviceToHost), "download");
+  }
+  void copy_from(const DArray& o) {
+    resize(o.n_);
+    if (n_) check(cudaMemcpy(p_, o.p_, n_ * sizeof(T), cudaMemcpyDeviceToDevice), "copy");
+  }
+  thrust::device_ptr<T> begin() { return thrust::device_pointer_cast(p_); }
+  thrust::device_ptr<T> end() { return thrust::device_pointer_cast(p_ + n_); }
+
+ private:
+  T* p_ = nullptr;
+  std::size_t n_ = 0, cap_ = 0;
+};
+
+template <class F>
+__global__ void each_kernel(std::size_t first, std::size_t last, F f) {
+  const std::size_t i = first + static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i < last) f(i);
+}
+
+/// Runs f(i) for i in [first, last), one thread each.
+template <class F>
+void each(std::size_t first, std::size_t last, F f) {
+  if (last <= first) return;
+  const std::size_t n = last - first;
+  constexpr unsigned block = 128;
+  each_kernel<<<static_cast<unsigned>((n + block - 1) / block), block>>>(first, last, f);
+  check(cudaGetLastError(), "kernel launch");
+}
+
+struct GroupRange {
+  std::uint32_t first = 0, count = 0;
+  Vec2 pos;
+};
+
+/// One block per rigid group: the P.26-P.27 loads as a block reduction (fixed order for a given
+/// block size, so the result is reproducible run to run).
+constexpr int kLoadBlock = 256;
+__global__ void group_loads_kernel(const GroupRange* ranges, const Kind* kind, const real* p, const real* ds,
+                                   const Vec2* normal, const Mat2* gradV, const Vec2* x, Domain domain, real mu,
+                                   GroupLoads* out) {
+  __shared__ real s[5][kLoadBlock];
+  const GroupRange r = ranges[blockIdx.x];
+  real a[5] = {0, 0, 0, 0, 0};
+  for (std::uint32_t k = threadIdx.x; k < r.count; k += blockDim.x) {
+    const std::uint32_t i = r.first + k;
+    if (kind[i] != Kind::Boundary) continue;
+    Vec2 tp, tv;
+    surface_traction(p[i], ds[i], normal[i], gradV[i], mu, tp, tv);
+    a[0] += tp.x;
+    a[1] += tp.y;
+    a[2] += tv.x;
+    a[3] += tv.y;
+    a[4] += cross(domain.separation(x[i], r.pos), tp + tv);
+  }
+  for (int q = 0; q < 5; ++q) s[q][threadIdx.x] = a[q];
+  __syncthreads();
+  for (int stride = kLoadBlock / 2; stride > 0; stride /= 2) {
+    if (static_cast<int>(threadIdx.x) < stride)
+      for (int q = 0; q < 5; ++q) s[q][threadIdx.x] += s[q][threadIdx.x + stride];
+    __syncthreads();
+  }
+  if (threadIdx.x == 0) {
+    GroupLoads g;
+    g.force_pressure = Vec2{s[0][0], s[1][0]};
+    g.force_viscous = Vec2{s[2][0], s[3][0]};
+    g.torque = s[4][0];
+    out[blockIdx.x] = g;
+  }
+}
+
+enum Counter { kSingularB = 0, kSingularBhat, kWallKept, kNormalFallback, kUnhealthy, kCounters };
+
+class CudaBackend final : public DeviceBackend {
+ public:
+  CudaBackend(const PhysicsParams& prm, const GridGeometry& grid, const WendlandC2& kernel, const Particles& P)
+      : grid_(grid), kernel_(kernel), d0_(prm.d0), kernel_normals_(prm.kernel_normals),
+        fatehi_manzari_(prm.fatehi_manzari), single_layer_(prm.single_layer) {
+    counters_.resize(kCounters);
+    zero_counters();
+    // Surface particles are addressed through their group index: check the layout once.
+    for (std::size_t i = 0; i < P.n_boundary; ++i)
+      if (P.group[i] < 0) throw std::logic_error("cuda backend: boundary particle without a rigid group");
+  }
+
+  void upload(const Particles& P) override {
+    n_ = P.size();
+    nb_ = P.n_boundary;
+    x_.upload(P.x);
+    v_.upload(P.v);
+    rho_.upload(P.rho);
+    p_.upload(P.p);
+    m_.upload(P.m);
+    kind_.upload(P.kind);
+    group_.upload(P.group);
+    id_.upload(P.id);
+    local_.upload(P.local);
+    normal_local_.upload(P.normal_local);
+    ds_.upload(P.ds);
+    acc_.upload(P.acc);
+    normal_.upload(P.normal);
+    source_.upload(P.source);
+    for (auto* a : {&rho_n_, &rho_s_, &p_n_, &vol_, &rc_, &div_v_, &scratch_real_}) a->resize(n_);
+    for (auto* a : {&v_n_, &v_s_, &lapV_, &G_, &shift_dir_, &lap_esum_}) a->resize(n_);
+    for (auto* a : {&gradV_, &gradV_n_}) a->resize(n_);
+    p_new_.resize(nb_);
+    start_.resize(n_ + 1);
+    cell_of_.resize(n_);
+    sorted_.resize(n_);
+    keys_.resize(n_);
+    cell_start_.resize(static_cast<std::size_t>(grid_.cell_count()) + 1);
+  }
+
+  void download(Particles& P) override {
+    x_.download(P.x);
+    v_.download(P.v);
+    rho_.download(P.rho);
+    p_.download(P.p);
+    m_.download(P.m);
+    kind_.download(P.kind);
+    group_.download(P.group);
+    id_.download(P.id);
+    acc_.download(P.acc);
+    normal_.download(P.normal);
+  }
+
+  void reorder_fluid() override {
+    if (n_ == nb_) return;
+    const std::size_t nf = n_ - nb_;
+    const GridGeometry grid = grid_;
+    const Vec2* x = x_.data() + nb_;
+    std::uint32_t* keys = keys_.data();
+    each(0, nf, [=] __device__(std::size_t k) { keys[k] = static_cast<std::uint32_t>(grid.cell_index(x[k])); });
+    order_.resize(nf);
+    thrust::sequence(thrust::device, order_.begin(), order_.end());
+    thrust::stable_sort_by_key(thrust::device, keys_.begin(), keys_.begin() + nf, order_.begin());
+    permute(x_);
+    permute(v_);
+    permute(rho_);
+    permute(p_);
+    permute(m_);
+    permute(kind_);
+    permute(group_);
+    permute(id_);
+  }
+
+  void refresh_geometry(SolverCounters& cnt) override {
+    const std::size_t n = n_;
+    const GridGeometry grid = grid_;
+    const Vec2* x = x_.data();
+    // Bin: cell of every particle, indices sorted stably by cell, first particle of each cell.
+    std::uint32_t* cell_of = cell_of_.data();
+    std::uint32_t* keys = keys_.data();
+    each(0, n, [=] __device__(std::size_t i) {
+      cell_of[i] = keys[i] = static_cast<std::uint32_t>(grid.cell_index(x[i]));
+    });
+    thrust::sequence(thrust::device, sorted_.begin(), sorted_.end());
+    thrust::stable_sort_by_key(thrust::device, keys_.begin(), keys_.begin() + n, sorted_.begin());
+    const std::size_t ncell = static_cast<std::size_t>(grid.cell_count());
+    thrust::lower_bound(thrust::device, keys_.begin(), keys_.begin() + n, thrust::counting_iterator<std::uint32_t>(0),
+                        thrust::counting_iterator<std::uint32_t>(static_cast<std::uint32_t>(ncell + 1)),
+                        cell_start_.begin());
+    // Count, scan, fill: the CSR list in the CPU's order.
+    const real h2 = kernel_.h * kernel_.h;
+    const std::uint32_t* sorted = sorted_.data();
+    const std::uint32_t* cstart = cell_start_.data();
+    std::uint32_t* start = start_.data();
+    each(0, n + 1, [=] __device__(std::size_t i) {
+      if (i == n) {
+        start[n] = 0;
+        return;
+      }
+      std::uint32_t count = 0;
+      visit_neighbors(grid, h2, x, sorted, cstart, cell_of[i], static_cast<std::uint32_t>(i),
+                      [&](std::uint32_t, real) { ++count; });
+      start[i] = count;
+    });
+    thrust::exclusive_scan(thrust::device, start_.begin(), start_.end(), start_.begin());
+    std::uint32_t pairs = 0;
+    check(cudaMemcpy(&pairs, start_.data() + n, sizeof pairs, cudaMemcpyDeviceToHost), "pair count");
+    pairs_ = pairs;
+    j_.resize(pairs);
+    grad_w_.resize(pairs);
+    lap_w_.resize(pairs);
+    std::uint32_t* jj = j_.data();
+    real* dmin2 = scratch_real_.data();
+    each(0, n, [=] __device__(std::size_t i) {
+      std::uint32_t q = start[i];
+      real m = 1e300;
+      visit_neighbors(grid, h2, x, sorted, cstart, cell_of[i], static_cast<std::uint32_t>(i), [&](std::uint32_t j, real d2) {
+        jj[q++] = j;
+        m = d2 < m ? d2 : m;
+      });
+      dmin2[i] = m;
+    });
+    const real m2 = thrust::reduce(thrust::device, scratch_real_.begin(), scratch_real_.end(), 1e300, thrust::minimum<real>());
+    min_distance_ = m2 < 1e299 ? std::sqrt(m2) : 0;
+
+    // Volumes and the geometry sweep.
+    const real* m = m_.data();
+    const real* rho = rho_.data();
+    real* vol = vol_.data();
+    each(0, n, [=] __device__(std::size_t i) { vol[i] = m[i] / rho[i]; });
+    const SweepContext c = context();
+    const real d0 = d0_;
+    const bool kernel_normals = kernel_normals_;
+    const std::size_t nb = nb_;
+    Vec2* grad_w = grad_w_.data();
+    real* lap_w = lap_w_.data();
+    Vec2* shift_dir = shift_dir_.data();
+    Vec2* lap_esum = lap_esum_.data();
+    Vec2* normal = normal_.data();
+    const Kind* kind = kind_.data();
+    unsigned long long* counters = counters_.data();
+    each(0, n, [=] __device__(std::size_t i) {
+      const GeometryAt g = geometry_at(c, i, d0, grad_w, lap_w);
+      shift_dir[i] = g.shift_direction;
+      lap_esum[i] = g.lap_esum;
+      if (kind[i] == Kind::Dummy) return;
+      if (!g.B_ok) atomicAdd(&counters[kSingularB], 1ull);
+      if (!g.Bhat_ok) atomicAdd(&counters[kSingularBhat], 1ull);
+      if (i < nb && kernel_normals && kind[i] == Kind::Boundary && !kernel_normal(g.normal_sum, normal[i]))
+        atomicAdd(&counters[kNormalFallback], 1ull);
+    });
+    collect_counters(cnt);
+  }
+
+  std::size_t pair_count() const override { return pairs_; }
+  real min_distance() const override { return min_distance_; }
+
+  real max_speed() override {
+    const real m2 = thrust::transform_reduce(
+        thrust::device, v_.begin(), v_.end(), [] __device__(Vec2 v) -> real { return norm2(v); }, 0.0, thrust::maximum<real>());
+    return std::sqrt(m2);
+  }
+
+  void save_stage_start(StageStart which) override {
+    if (which == StageStart::StepStart) {
+      v_n_.copy_from(v_);
+      rho_n_.copy_from(rho_);
+      p_n_.copy_from(p_);
+    } else {
+      v_s_.copy_from(v_);
+      rho_s_.copy_from(rho_);
+    }
+  }
+
+  void start_of_step_derivatives() override {
+    const SweepContext c = context();
+    const Vec2* v = v_.data();
+    const real* p = p_.data();
+    const real* rho = rho_.data();
+    Mat2* gradV = gradV_.data();
+    Mat2* gradV_n = gradV_n_.data();
+    Vec2* lapV = lapV_.data();
+    Vec2* G = G_.data();
+    real* div_v = div_v_.data();
+    each(0, n_, [=] __device__(std::size_t i) {
+      Mat2 L;
+      Vec2 lap;
+      velocity_derivatives_at(c, i, v, L, lap);
+      gradV[i] = L;
+      gradV_n[i] = L;
+      lapV[i] = lap;
+      div_v[i] = trace(L);
+      G[i] = pressure_gradient_at(c, i, p, rho);
+    });
+  }
+
+  void pressure_gradient() override {
+    const SweepContext c = context();
+    const real* p = p_.data();
+    const real* rho = rho_.data();
+    Vec2* G = G_.data();
+    each(0, n_, [=] __device__(std::size_t i) { G[i] = pressure_gradient_at(c, i, p, rho); });
+  }
+
+  void rhie_chow_and_momentum(StageStart from, const StageParams& s) override {
+    const SweepContext c = context();
+    const real* p = p_.data();
+    const real* rho = rho_.data();
+    const Vec2* G = G_.data();
+    const Vec2* lapV = lapV_.data();
+    const Vec2* v_start = (from == StageStart::StepStart ? v_n_ : v_s_).data();
+    Vec2* v = v_.data();
+    real* rc = rc_.data();
+    const std::size_t nb = nb_;
+    each(0, n_, [=] __device__(std::size_t i) {
+      rc[i] = rhie_chow_at(c, i, p, rho, G);
+      if (i >= nb) v[i] = momentum_stage(v_start[i], G[i], lapV[i], s);
+    });
+  }
+
+  void derivatives_and_continuity(StageStart from, const StageParams& s) override {
+    const SweepContext c = context();
+    const Vec2* v = v_.data();
+    const real* rho_start = (from == StageStart::StepStart ? rho_n_ : rho_s_).data();
+    const real* rc = rc_.data();
+    const Kind* kind = kind_.data();
+    Mat2* gradV = gradV_.data();
+    Vec2* lapV = lapV_.data();
+    real* div_v = div_v_.data();
+    real* rho = rho_.data();
+    real* p = p_.data();
+    const std::size_t nb = nb_;
+    each(0, n_, [=] __device__(std::size_t i) {
+      Mat2 L;
+      Vec2 lap;
+      velocity_derivatives_at(c, i, v, L, lap);
+      gradV[i] = L;
+      lapV[i] = lap;
+      div_v[i] = trace(L);
+      if (evolves_density(i, nb, kind[i], s.single_layer)) continuity_stage(rho_start[i], div_v[i], rc[i], s, rho[i], p[i]);
+    });
+  }
+
+  void boundary_pressure(int sweeps, const StageParams& s, SolverCounters& cnt) override {
+    const Kind* kind = kind_.data();
+    real* p = p_.data();
+    real* rho = rho_.data();
+    if (!single_layer_) {
+      const std::int32_t* source = source_.data();
+      each(0, nb_, [=] __device__(std::size_t i) {
+        if (kind[i] != Kind::Dummy) return;
+        p[i] = p[source[i]];
+        rho[i] = rho[source[i]];
+      });
+      return;
+    }
+    const SweepContext c = context();
+    const Vec2* normal = normal_.data();
+    const Vec2* acc = acc_.data();
+    const Vec2* lapV = lapV_.data();
+    real* p_new = p_new_.data();
+    unsigned long long* counters = counters_.data();
+    for (int sweep = 0; sweep < sweeps; ++sweep) {
+      each(0, nb_, [=] __device__(std::size_t i) {
+        p_new[i] = p[i];
+        if (kind[i] != Kind::Boundary) return;
+        if (!wall_pressure_at(c, i, p, rho, normal[i], acc[i], s.nu * lapV[i], s.f, p_new[i]))
+          atomicAdd(&counters[kWallKept], 1ull);
+      });
+      each(0, nb_, [=] __device__(std::size_t i) {
+        if (kind[i] != Kind::Boundary) return;
+        p[i] = p_new[i];
+        rho[i] = density_from_pressure(p_new[i], s.rho0, s.c, s.p0);
+      });
+    }
+    collect_counters(cnt);
+  }
+
+  void group_loads(const std::vector<RigidGroup>& groups, real mu, std::vector<GroupLoads>& out) override {
+    ranges_host_.resize(groups.size());
+    for (std::size_t k = 0; k < groups.size(); ++k) {
+      ranges_host_[k].first = static_cast<std::uint32_t>(groups[k].first);
+      ranges_host_[k].count = static_cast<std::uint32_t>(groups[k].count);
+      ranges_host_[k].pos = groups[k].pos;
+    }
+    out.resize(groups.size());
+    if (groups.empty()) return;
+    ranges_.upload(ranges_host_);
+    loads_.resize(groups.size());
+    group_loads_kernel<<<static_cast<unsigned>(groups.size()), kLoadBlock>>>(
+        ranges_.data(), kind_.data(), p_.data(), ds_.data(), normal_.data(), gradV_.data(), x_.data(), grid_.domain, mu,
+        loads_.data());
+    check(cudaGetLastError(), "group loads");
+    loads_.download(out);
+  }
+
+  void surface_motion(const std::vector<GroupMotion>& motions, bool place) override {
+    if (motions.empty()) return;
+    motions_.upload(motions);
+    const GroupMotion* mo = motions_.data();
+    const std::int32_t* group = group_.data();
+    const Vec2* local = local_.data();
+    const Vec2* normal_local = normal_local_.data();
+    Vec2* x = x_.data();
+    Vec2* v = v_.data();
+    Vec2* acc = acc_.data();
+    Vec2* normal = normal_.data();
+    const Domain domain = grid_.domain;
+    each(0, nb_, [=] __device__(std::size_t i) {
+      const GroupMotion m = mo[group[i]];
+      if (place) {
+        x[i] = surface_position(domain, m, local[i]);
+        normal[i] = rotate(normal_local[i], m.cos_angle, m.sin_angle);
+      }
+      surface_kinematics(m, local[i], v[i], acc[i]);
+    });
+  }
+
+  real end_of_step(real dt, bool single_layer) override {
+    const std::size_t nb = nb_;
+    const Kind* kind = kind_.data();
+    const Domain domain = grid_.domain;
+    const Vec2* v_n = v_n_.data();
+    const real* rho_n = rho_n_.data();
+    const real* p_n = p_n_.data();
+    Vec2* x = x_.data();
+    Vec2* v = v_.data();
+    real* rho = rho_.data();
+    real* p = p_.data();
+    real* v2 = scratch_real_.data();
+    each(0, n_, [=] __device__(std::size_t i) {
+      v2[i] = end_of_step_update(i, nb, kind[i], domain, dt, single_layer, v_n[i], rho_n[i], p_n[i], x[i], v[i], rho[i], p[i]);
+    });
+    return thrust::reduce(thrust::device, scratch_real_.begin(), scratch_real_.end(), 0.0, thrust::maximum<real>());
+  }
+
+  void shift(real scale, real c_sound) override {
+    pressure_gradient();
+    Mat2* gradV = gradV_.data();
+    const Mat2* gradV_n = gradV_n_.data();
+    each(0, n_, [=] __device__(std::size_t i) { gradV[i] = 0.5 * (gradV[i] + gradV_n[i]); });
+    if (!(scale > 0)) return;
+    const Vec2* dir = shift_dir_.data();
+    const Vec2* G = G_.data();
+    const Domain domain = grid_.domain;
+    Vec2* x = x_.data();
+    Vec2* v = v_.data();
+    real* p = p_.data();
+    real* rho = rho_.data();
+    each(nb_, n_, [=] __device__(std::size_t i) {
+      shift_particle(dir[i], scale, gradV[i], G[i], domain, c_sound, x[i], v[i], p[i], rho[i]);
+    });
+  }
+
+  std::int64_t unhealthy_id(const HealthLimits& lim) override {
+    const std::size_t nb = nb_;
+    const Vec2* x = x_.data();
+    const Vec2* v = v_.data();
+    const real* rho = rho_.data();
+    const real* p = p_.data();
+    const std::int64_t* id = id_.data();
+    unsigned long long* worst = counters_.data() + kUnhealthy;
+    const unsigned long long none = ULLONG_MAX;
+    check(cudaMemcpy(worst, &none, sizeof none, cudaMemcpyHostToDevice), "health");
+    each(0, n_, [=] __device__(std::size_t i) {
+      if (particle_unhealthy(i >= nb, x[i], v[i], rho[i], p[i], lim))
+        atomicMin(worst, static_cast<unsigned long long>(id[i]));
+    });
+    unsigned long long w = 0;
+    check(cudaMemcpy(&w, worst, sizeof w, cudaMemcpyDeviceToHost), "health");
+    return w == none ? -1 : static_cast<std::int64_t>(w);
+  }
+
+ // (public: nvcc's extended device lambdas may not live in private member functions)
+  SweepContext context() const {
+    SweepContext c;
+    c.domain = grid_.domain;
+    c.kernel = kernel_;
+    c.start = start_.data();
+    c.j = j_.data();
+    c.n = n_;
+    c.nb = nb_;
+    c.x = x_.data();
+    c.vol = vol_.data();
+    c.kind = kind_.data();
+    c.fatehi_manzari = fatehi_manzari_;
+    c.grad_w = grad_w_.data();
+    c.lap_w = lap_w_.data();
+    c.lap_esum = lap_esum_.data();
+    return c;
+  }
+
+  /// Applies the permutation order_ to the fluid block of a field.
+  template <class T>
+  void permute(DArray<T>& a) {
+    const std::size_t nf = n_ - nb_;
+    scratch_bytes_.resize(nf * sizeof(T));
+    T* tmp = reinterpret_cast<T*>(scratch_bytes_.data());
+    T* f = a.data() + nb_;
+    const std::size_t* order = order_.data();
+    each(0, nf, [=] __device__(std::size_t k) { tmp[k] = f[order[k]]; });
+    check(cudaMemcpy(f, tmp, nf * sizeof(T), cudaMemcpyDeviceToDevice), "permute");
+  }
+
+  void zero_counters() { check(cudaMemset(counters_.data(), 0, kCounters * sizeof(unsigned long long)), "counters"); }
+
+  void collect_counters(SolverCounters& cnt) {
+    unsigned long long h[kCounters];
+    check(cudaMemcpy(h, counters_.data(), sizeof h, cudaMemcpyDeviceToHost), "counters");
+    cnt.singular_B += static_cast<std::int64_t>(h[kSingularB]);
+    cnt.singular_Bhat += static_cast<std::int64_t>(h[kSingularBhat]);
+    cnt.wall_pressure_kept += static_cast<std::int64_t>(h[kWallKept]);
+    cnt.normal_fallback += static_cast<std::int64_t>(h[kNormalFallback]);
+    zero_counters();
+  }
+
+ private:
+  GridGeometry grid_;
+  WendlandC2 kernel_;
+  real d0_;
+  bool kernel_normals_, fatehi_manzari_, single_layer_;
+  std::size_t n_ = 0, nb_ = 0, pairs_ = 0;
+  real min_distance_ = 0;
+
+  // particle state
+  DArray<Vec2> x_, v_, local_, normal_local_, acc_, normal_;
+  DArray<real> rho_, p_, m_, ds_;
+  DArray<Kind> kind_;
+  DArray<std::int32_t> group_, source_;
+  DArray<std::int64_t> id_;
+  // work arrays
+  DArray<real> rho_n_, rho_s_, p_n_, vol_, rc_, div_v_, p_new_, scratch_real_;
+  DArray<Vec2> v_n_, v_s_, lapV_, G_, shift_dir_, lap_esum_, grad_w_;
+  DArray<Mat2> gradV_, gradV_n_;
+  DArray<real> lap_w_;
+  DArray<std::uint32_t> start_, j_, cell_of_, sorted_, keys_, cell_start_;
+  DArray<std::size_t> order_;
+  DArray<unsigned char> scratch_bytes_;
+  DArray<unsigned long long> counters_;
+  // bodies
+  std::vector<GroupRange> ranges_host_;
+  DArray<GroupRange> ranges_;
+  DArray<GroupLoads> loads_;
+  DArray<GroupMotion> motions_;
+};
+
+}  // namespace
+
+bool cuda_backend_available(std::string* why) {
+  int count = 0;
+  const cudaError_t e = cudaGetDeviceCount(&count);
+  if (e != cudaSuccess || count == 0) {
+    if (why)
+      *why = std::string("no CUDA GPU is available (") + (e != cudaSuccess ? cudaGetErrorString(e) : "0 devices") + ")";
+    return false;
+  }
+  if (why) why->clear();
+  return true;
+}
+
+std::unique_ptr<DeviceBackend> make_cuda_backend(const PhysicsParams& prm, const GridGeometry& grid,
+                                                 const WendlandC2& kernel, const Particles& P) {
+  std::string why;
+  if (!cuda_backend_available(&why)) throw std::runtime_error(why);
+  return std::make_unique<CudaBackend>(prm, grid, kernel, P);
+}
+
+}  // namespace particula

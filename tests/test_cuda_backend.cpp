@@ -1,0 +1,113 @@
+// The CUDA backend against the CPU path (issue: speed). On a machine without a GPU (or a build
+// without CUDA) the comparisons skip with the reason, and the refusal path is checked instead.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "particula/case/load.hpp"
+#include "particula/scene/scene.hpp"
+#include "particula/solver/device_backend.hpp"
+#include "particula/solver/solver.hpp"
+
+namespace particula {
+namespace {
+
+Case load(const std::string& name, const std::vector<std::string>& overrides) {
+  return load_case(std::string(PARTICULA_SOURCE_DIR) + "/cases/" + name + ".toml", overrides);
+}
+
+struct Difference {
+  double body_velocity = 0;  // max over bodies of |V_gpu - V_cpu| / |V_cpu|, and the same for Omega
+  double fluid_velocity = 0;  // max over particles of |v_gpu - v_cpu| / max |v_cpu|
+};
+
+/// Runs `steps` steps of the case on the CPU and on the GPU, in double precision, and compares.
+Difference compare(const Case& c, int steps) {
+  Scene a = build_scene(c), b = build_scene(c);
+  b.params.cuda = true;
+  Solver cpu(a.params, a.domain, std::move(a.particles), a.groups);
+  Solver gpu(b.params, b.domain, std::move(b.particles), b.groups);
+  for (int s = 0; s < steps; ++s) {
+    EXPECT_FALSE(cpu.step().has_value()) << "cpu step " << s;
+    EXPECT_FALSE(gpu.step().has_value()) << "gpu step " << s;
+  }
+  EXPECT_EQ(cpu.time(), gpu.time());
+  Difference d;
+  for (std::size_t k = 0; k < cpu.groups().size(); ++k) {
+    const RigidGroup& gc = cpu.groups()[k];
+    const RigidGroup& gg = gpu.groups()[k];
+    if (gc.is_wall) continue;
+    if (norm(gc.vel) > 0) d.body_velocity = std::max(d.body_velocity, norm(gg.vel - gc.vel) / norm(gc.vel));
+    if (gc.omega != 0) d.body_velocity = std::max(d.body_velocity, std::fabs(gg.omega - gc.omega) / std::fabs(gc.omega));
+  }
+  const Particles& pc = cpu.particles();
+  const Particles& pg = gpu.particles();
+  std::vector<Vec2> vc(pc.size()), vg(pg.size());
+  double vmax = 0;
+  for (std::size_t i = 0; i < pc.size(); ++i) {
+    vc[static_cast<std::size_t>(pc.id[i])] = pc.v[i];
+    vg[static_cast<std::size_t>(pg.id[i])] = pg.v[i];
+    vmax = std::max(vmax, norm(pc.v[i]));
+  }
+  for (std::size_t i = 0; i < vc.size(); ++i) d.fluid_velocity = std::max(d.fluid_velocity, norm(vg[i] - vc[i]) / vmax);
+  return d;
+}
+
+bool have_gpu(std::string& why) { return cuda_backend_available(&why); }
+
+TEST(CudaBackend, FallingCylinderAgreesWithCpuAfter100Steps) {
+  std::string why;
+  if (!have_gpu(why)) GTEST_SKIP() << "no CUDA backend here: " << why;
+  const Difference d = compare(load("falling_cylinder", {"resolution.d0=2.5e-4"}), 100);
+  std::printf("falling cylinder, 100 steps: body velocity rel. difference %.3g, fluid velocity %.3g\n",
+              d.body_velocity, d.fluid_velocity);
+  EXPECT_LT(d.body_velocity, 1e-9);
+  EXPECT_LT(d.fluid_velocity, 1e-9);
+}
+
+TEST(CudaBackend, CollidingBodiesPeriodicShearAndDummyWallsAgreeWithCpu) {
+  std::string why;
+  if (!have_gpu(why)) GTEST_SKIP() << "no CUDA backend here: " << why;
+  const struct {
+    const char* name;
+    std::vector<std::string> overrides;
+  } cases[] = {
+      {"dkt", {"resolution.d0=2e-4"}},
+      {"two_cylinders_shear", {}},
+      {"falling_cylinder", {"resolution.d0=2.5e-4", "numerics.boundary=dummy"}},
+      {"couette", {}},
+  };
+  for (const auto& k : cases) {
+    const Difference d = compare(load(k.name, k.overrides), 60);
+    std::printf("%s: body velocity rel. difference %.3g, fluid velocity %.3g\n", k.name, d.body_velocity,
+                d.fluid_velocity);
+    EXPECT_LT(d.body_velocity, 1e-9) << k.name;
+    EXPECT_LT(d.fluid_velocity, 1e-9) << k.name;
+  }
+}
+
+TEST(CudaBackend, WithoutAGpuTheBackendIsRefusedWithAReason) {
+  std::string why;
+  if (have_gpu(why)) GTEST_SKIP() << "a GPU is present";
+  EXPECT_FALSE(why.empty());
+  const Case c = load("couette", {});
+  Scene s = build_scene(c);
+  s.params.cuda = true;
+  EXPECT_THROW(Solver(s.params, s.domain, std::move(s.particles), s.groups), std::runtime_error);
+  // The command line refuses it before writing anything: exit code 2.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "particula_cuda_refused";
+  std::filesystem::remove_all(dir);
+  const std::string cmd = std::string(PARTICULA_BINARY) + " run " + PARTICULA_SOURCE_DIR +
+                          "/cases/couette.toml --quiet --backend cuda --out " + dir.string() + " > /dev/null 2>&1";
+  const int rc = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(rc));
+  EXPECT_EQ(WEXITSTATUS(rc), 2);
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+}  // namespace
+}  // namespace particula
