@@ -35,7 +35,9 @@ Difference compare(const Case& c, int steps) {
     EXPECT_FALSE(cpu.step().has_value()) << "cpu step " << s;
     EXPECT_FALSE(gpu.step().has_value()) << "gpu step " << s;
   }
-  EXPECT_EQ(cpu.time(), gpu.time());
+  // dt depends on the largest speed, which differs in the last bits (the body loads are summed
+  // in another order on the GPU), so the times agree to round-off, not bitwise.
+  EXPECT_NEAR(cpu.time(), gpu.time(), 1e-12 * cpu.time());
   Difference d;
   for (std::size_t k = 0; k < cpu.groups().size(); ++k) {
     const RigidGroup& gc = cpu.groups()[k];

@@ -3,7 +3,9 @@
 // src/solver/solver.cpp (solver/sweeps.hpp for the physics, neighbors/neighbor_list.hpp for
 // the search). One thread per particle; every neighbour sum is a gather in list order, and the
 // list is built in the CPU's order (cells sorted stably by index, neighbour cells in the same
-// order), so the GPU computes the same sums in the same order as the CPU.
+// order), so the GPU computes the same sums in the same order as the CPU. The list and the pair
+// weights are stored column-major (ELL: neighbour q of particle i at q n + i) instead of the
+// CPU's CSR rows, so that the loads of a warp are coalesced.
 #include <cuda_runtime.h>
 #include <thrust/binary_search.h>
 #include <thrust/device_ptr.h>
@@ -166,7 +168,7 @@ class CudaBackend final : public DeviceBackend {
     for (auto* a : {&v_n_, &v_s_, &lapV_, &G_, &shift_dir_, &lap_esum_}) a->resize(n_);
     for (auto* a : {&gradV_, &gradV_n_}) a->resize(n_);
     p_new_.resize(nb_);
-    start_.resize(n_ + 1);
+    count_.resize(n_);
     cell_of_.resize(n_);
     sorted_.resize(n_);
     keys_.resize(n_);
@@ -222,35 +224,32 @@ class CudaBackend final : public DeviceBackend {
     thrust::lower_bound(thrust::device, keys_.begin(), keys_.begin() + n, thrust::counting_iterator<std::uint32_t>(0),
                         thrust::counting_iterator<std::uint32_t>(static_cast<std::uint32_t>(ncell + 1)),
                         cell_start_.begin());
-    // Count, scan, fill: the CSR list in the CPU's order.
+    // Count, then fill: the list in the CPU's order, stored column-major (ELL): the q-th
+    // neighbour of particle i at q * n + i, so that a warp's loads are coalesced.
     const real h2 = kernel_.h * kernel_.h;
     const std::uint32_t* sorted = sorted_.data();
     const std::uint32_t* cstart = cell_start_.data();
-    std::uint32_t* start = start_.data();
-    each(0, n + 1, [=] __device__(std::size_t i) {
-      if (i == n) {
-        start[n] = 0;
-        return;
-      }
-      std::uint32_t count = 0;
+    std::uint32_t* count = count_.data();
+    each(0, n, [=] __device__(std::size_t i) {
+      std::uint32_t k = 0;
       visit_neighbors(grid, h2, x, sorted, cstart, cell_of[i], static_cast<std::uint32_t>(i),
-                      [&](std::uint32_t, real) { ++count; });
-      start[i] = count;
+                      [&](std::uint32_t, real) { ++k; });
+      count[i] = k;
     });
-    thrust::exclusive_scan(thrust::device, start_.begin(), start_.end(), start_.begin());
-    std::uint32_t pairs = 0;
-    check(cudaMemcpy(&pairs, start_.data() + n, sizeof pairs, cudaMemcpyDeviceToHost), "pair count");
-    pairs_ = pairs;
-    j_.resize(pairs);
-    grad_w_.resize(pairs);
-    lap_w_.resize(pairs);
+    const std::uint32_t width = thrust::reduce(thrust::device, count_.begin(), count_.end(), 0u, thrust::maximum<std::uint32_t>());
+    pairs_ = thrust::reduce(thrust::device, count_.begin(), count_.end(), std::size_t{0}, thrust::plus<std::size_t>());
+    const std::size_t slots = static_cast<std::size_t>(width) * n;
+    j_.resize(slots);
+    grad_w_.resize(slots);
+    lap_w_.resize(slots);
     std::uint32_t* jj = j_.data();
     real* dmin2 = scratch_real_.data();
     each(0, n, [=] __device__(std::size_t i) {
-      std::uint32_t q = start[i];
+      std::size_t q = i;
       real m = 1e300;
       visit_neighbors(grid, h2, x, sorted, cstart, cell_of[i], static_cast<std::uint32_t>(i), [&](std::uint32_t j, real d2) {
-        jj[q++] = j;
+        jj[q] = j;
+        q += n;
         m = d2 < m ? d2 : m;
       });
       dmin2[i] = m;
@@ -511,7 +510,9 @@ class CudaBackend final : public DeviceBackend {
     SweepContext c;
     c.domain = grid_.domain;
     c.kernel = kernel_;
-    c.start = start_.data();
+    c.start = nullptr;  // ELL layout
+    c.count = count_.data();
+    c.stride = n_;
     c.j = j_.data();
     c.n = n_;
     c.nb = nb_;
@@ -568,7 +569,7 @@ class CudaBackend final : public DeviceBackend {
   DArray<Vec2> v_n_, v_s_, lapV_, G_, shift_dir_, lap_esum_, grad_w_;
   DArray<Mat2> gradV_, gradV_n_;
   DArray<real> lap_w_;
-  DArray<std::uint32_t> start_, j_, cell_of_, sorted_, keys_, cell_start_;
+  DArray<std::uint32_t> count_, j_, cell_of_, sorted_, keys_, cell_start_;
   DArray<std::size_t> order_;
   DArray<unsigned char> scratch_bytes_;
   DArray<unsigned long long> counters_;

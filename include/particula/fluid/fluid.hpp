@@ -24,8 +24,8 @@ PARTICULA_HD real continuity_rate(real rho, real div_v, real g_dt, real rhie_cho
   return -rho * (div_v + g_dt * rhie_chow);
 }
 
-/// Shifting displacement contribution of neighbour j (P.33): (rbar_i^2 / r_ij^2) e_ij; the sum
-/// is multiplied by beta V_max dt.
-PARTICULA_HD Vec2 shifting_pair(real rbar2, real r, Vec2 rij) { return (rbar2 / (r * r * r)) * rij; }
+/// Shifting displacement contribution of neighbour j (P.33): (rbar_i^2 / r_ij^2) e_ij, from
+/// 1/r_ij and e_ij; the sum is multiplied by beta V_max dt.
+PARTICULA_HD Vec2 shifting_pair(real rbar2, real inv_r, Vec2 e) { return (rbar2 * inv_r * inv_r) * e; }
 
 }  // namespace particula

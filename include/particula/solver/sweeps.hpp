@@ -45,8 +45,17 @@ PARTICULA_HD PairGeometry pair_geometry(const Domain& domain, const WendlandC2& 
 struct SweepContext {
   Domain domain;
   WendlandC2 kernel;
-  const std::uint32_t* start = nullptr;  // pairs of i are j[start[i] .. start[i+1])
+  // The pairs of particle i are k = first_pair(i) + q * stride, q = 0 .. pair_count(i) - 1:
+  //   CSR (the CPU): start[i] + q, the pairs of one particle contiguous (stride 1);
+  //   ELL (the GPU): i + q * stride with stride = the padded particle count and per-particle
+  //   counts, so that the threads of a warp (consecutive i) read consecutive addresses.
+  const std::uint32_t* start = nullptr;  // CSR offsets (size n+1), or nullptr for ELL
+  const std::uint32_t* count = nullptr;  // ELL pair counts
+  std::size_t stride = 1;
   const std::uint32_t* j = nullptr;
+
+  PARTICULA_HD std::size_t first_pair(std::size_t i) const { return start ? start[i] : i; }
+  PARTICULA_HD std::uint32_t pair_count(std::size_t i) const { return start ? start[i + 1] - start[i] : count[i]; }
   std::size_t n = 0;   // particles
   std::size_t nb = 0;  // boundary block [0, nb)
   const Vec2* x = nullptr;
@@ -85,10 +94,11 @@ struct GeometryAt {
 /// `d0` is rbar for a particle alone.
 PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d0, Vec2* grad_w, real* lap_w) {
   GeometryAt out;
-  const std::uint32_t b = c.start[i], e = c.start[i + 1];
+  const std::size_t b = c.first_pair(i), st = c.stride;
+  const std::uint32_t np = c.pair_count(i);
   const Vec2 xi = c.x[i];
   if (c.kind[i] == Kind::Dummy) {
-    for (std::uint32_t k = b; k < e; ++k) {
+    for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
       const std::uint32_t j = c.j[k];
       const PairGeometry g = pair_geometry(c.domain, c.kernel, xi, c.x[j]);
       grad_w[k] = (c.vol[j] * g.F) * g.rij;
@@ -99,28 +109,36 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
   Mat2 S;
   LaplacianMoments mom;
   real rsum = 0;
-  for (std::uint32_t k = b; k < e; ++k) {
-    const std::uint32_t j = c.j[k];
-    const PairGeometry g = pair_geometry(c.domain, c.kernel, xi, c.x[j]);
-    const real w = c.vol[j];
-    S += renormalization_pair(w, g.F, g.rij);
-    laplacian_moments_pair(mom, w, g.r, g.F * g.r, g.rij / g.r);
-    out.normal_sum += (w * g.F) * g.rij;
-    rsum += g.r;
-  }
-  out.B_ok = renormalization_tensor(S, out.B);
-  out.Bhat_ok = laplacian_correction_tensor(mom, out.B, out.Bhat, i < c.nb);
-  out.rbar = e > b ? rsum / static_cast<real>(e - b) : d0;
-  const real rbar2 = out.rbar * out.rbar;
-  const bool fluid = i >= c.nb;
-  for (std::uint32_t k = b; k < e; ++k) {
+  // First pass: the moment sums of B and Bhat. The pair vector and distance are parked in the
+  // pair's output slots (grad_w[k], lap_w[k]) so the second pass reads them from cache instead
+  // of recomputing the minimum image and the square root.
+  for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
     const std::uint32_t j = c.j[k];
     const PairGeometry g = pair_geometry(c.domain, c.kernel, xi, c.x[j]);
     const real w = c.vol[j];
     const real inv_r = 1 / g.r;
-    const Vec2 eij = inv_r * g.rij;
-    const real dW = g.F * g.r;
-    grad_w[k] = (w * g.F) * (out.B * g.rij);
+    S += renormalization_pair(w, g.F, g.rij);
+    laplacian_moments_pair(mom, w, g.r, g.F * g.r, inv_r * g.rij);
+    out.normal_sum += (w * g.F) * g.rij;
+    rsum += g.r;
+    grad_w[k] = g.rij;
+    lap_w[k] = g.r;
+  }
+  out.B_ok = renormalization_tensor(S, out.B);
+  out.Bhat_ok = laplacian_correction_tensor(mom, out.B, out.Bhat, i < c.nb);
+  out.rbar = np > 0 ? rsum / static_cast<real>(np) : d0;
+  const real rbar2 = out.rbar * out.rbar;
+  const bool fluid = i >= c.nb;
+  // Second pass: the stored weights of every later sweep, and the shifting direction.
+  for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
+    const Vec2 rij = grad_w[k];
+    const real r = lap_w[k];
+    const real F = c.kernel.F(r);
+    const real w = c.vol[c.j[k]];
+    const real inv_r = 1 / r;
+    const Vec2 eij = inv_r * rij;
+    const real dW = F * r;
+    grad_w[k] = (w * F) * (out.B * rij);
     if (c.fatehi_manzari) {
       const real weight = fm_pair_weight(out.Bhat, w, dW, eij);
       lap_w[k] = weight * inv_r;
@@ -128,7 +146,7 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
     } else {
       lap_w[k] = morris_pair_weight(w, dW) * inv_r;
     }
-    if (fluid) out.shift_direction += shifting_pair(rbar2, g.r, g.rij);
+    if (fluid) out.shift_direction += shifting_pair(rbar2, inv_r, eij);
   }
   return out;
 }
@@ -143,7 +161,9 @@ PARTICULA_HD void velocity_derivatives_at(const SweepContext& c, std::size_t i, 
   if (c.kind[i] == Kind::Dummy) return;
   const Vec2 vi = v[i];
   Vec2 a;
-  for (std::uint32_t k = c.start[i]; k < c.start[i + 1]; ++k) {
+  const std::size_t b = c.first_pair(i), st = c.stride;
+  const std::uint32_t np = c.pair_count(i);
+  for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
     const Vec2 dv = v[c.j[k]] - vi;  // V_j - V_i
     L += vector_gradient_pair(c.grad_w[k], dv);
     a -= c.lap_w[k] * dv;            // lap_w (V_i - V_j)
@@ -155,7 +175,9 @@ PARTICULA_HD void velocity_derivatives_at(const SweepContext& c, std::size_t i, 
 PARTICULA_HD Vec2 pressure_gradient_at(const SweepContext& c, std::size_t i, const real* p, const real* rho) {
   Vec2 g;
   const real pi = p[i];
-  for (std::uint32_t k = c.start[i]; k < c.start[i + 1]; ++k) g += gradient_pair(c.grad_w[k], p[c.j[k]] - pi);
+  const std::size_t b = c.first_pair(i), st = c.stride;
+  const std::uint32_t np = c.pair_count(i);
+  for (std::size_t q = 0, k = b; q < np; ++q, k += st) g += gradient_pair(c.grad_w[k], p[c.j[k]] - pi);
   return g / rho[i];
 }
 
@@ -168,7 +190,9 @@ PARTICULA_HD real rhie_chow_at(const SweepContext& c, std::size_t i, const real*
   const Vec2 Gi = G[i];
   const real pi = p[i], rhoi = rho[i];
   real div_g = 0, lap_p = 0;
-  for (std::uint32_t k = c.start[i]; k < c.start[i + 1]; ++k) {
+  const std::size_t b = c.first_pair(i), st = c.stride;
+  const std::uint32_t np = c.pair_count(i);
+  for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
     const std::uint32_t j = c.j[k];
     div_g += dot(c.grad_w[k], G[j] - Gi);
     lap_p += c.lap_w[k] * ((pi - p[j]) / (0.5 * (rhoi + rho[j])));
@@ -183,7 +207,9 @@ PARTICULA_HD bool wall_pressure_at(const SweepContext& c, std::size_t i, const r
                                    Vec2 a, Vec2 nu_lap_v, Vec2 f, real& p_out) {
   WallPressureSums s;
   const real rhoi = rho[i];
-  for (std::uint32_t k = c.start[i]; k < c.start[i + 1]; ++k) {
+  const std::size_t b = c.first_pair(i), st = c.stride;
+  const std::uint32_t np = c.pair_count(i);
+  for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
     const std::uint32_t j = c.j[k];
     wall_pressure_pair(s, c.grad_w[k], n, p[j], 0.5 * (rhoi + rho[j]), j >= c.nb);
   }
