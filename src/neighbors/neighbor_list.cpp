@@ -31,11 +31,10 @@ void CellGrid::bin(const std::vector<Vec2>& x) {
   const std::size_t n = x.size();
   const std::size_t ncell = static_cast<std::size_t>(geo_.cell_count());
   cell_of_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) cell_of_[i] = static_cast<std::uint32_t>(geo_.cell_index(x[i]));
   start_.assign(ncell + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    cell_of_[i] = static_cast<std::uint32_t>(geo_.cell_index(x[i]));
-    ++start_[cell_of_[i] + 1];
-  }
+  for (std::size_t i = 0; i < n; ++i) ++start_[cell_of_[i] + 1];
   for (std::size_t c = 0; c < ncell; ++c) start_[c + 1] += start_[c];
   sorted_.resize(n);
   fill_.assign(start_.begin(), start_.end() - 1);
