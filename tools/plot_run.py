@@ -113,52 +113,122 @@ REFERENCES = {
 }
 
 
-def case_name(run):
+def read_case(run):
+    """The resolved case.toml of the run as a dict ({} without it or without tomllib)."""
     try:
         import tomllib
         with open(os.path.join(run, "case.toml"), "rb") as f:
-            return tomllib.load(f).get("name", "")
-    except Exception:  # no case.toml or no tomllib: plots without reference curves
-        return ""
+            return tomllib.load(f)
+    except Exception:  # no case.toml or no tomllib (Python < 3.11): plots without names and references
+        return {}
+
+
+def case_name(run):
+    return read_case(run).get("name", "")
+
+
+def body_area(b):
+    """Exact area of a [[body]] table (m^2), or None for an unknown shape."""
+    shape = b.get("shape", "circle")
+    if shape == "circle":
+        return math.pi * b["radius"] ** 2
+    if shape == "half_disc":
+        return 0.5 * math.pi * b["radius"] ** 2
+    if shape == "ellipse":
+        return math.pi * b["semi_axes"][0] * b["semi_axes"][1]
+    if shape == "polygon":
+        v = b["vertices"]
+        return 0.5 * abs(sum(v[i][0] * v[(i + 1) % len(v)][1] - v[(i + 1) % len(v)][0] * v[i][1] for i in range(len(v))))
+    return None
+
+
+def excess_weight_y(case, b):
+    """The y force a settling body's hydrodynamic load balances at terminal speed: its weight
+    less buoyancy, -(rho_s - rho_f) A g_y (the whole weight -rho_s A g_y when gravity acts in the
+    fluid, whose pressure then carries the buoyancy). None for a body that is not free or falls
+    under no gravity."""
+    fluid = case.get("fluid", {})
+    g = fluid.get("gravity", [0.0, 0.0])[1]
+    area = body_area(b)
+    if b.get("motion", "free") != "free" or g == 0 or area is None:
+        return None
+    rho_f = fluid.get("rho0", 1000.0)
+    rho_s = b.get("density", 0.0)
+    return -(rho_s * area * g if fluid.get("gravity_in_fluid", False) else (rho_s - rho_f) * area * g)
+
+
+def plot_reference(ax, col, refs):
+    """Draws the reference curves of `refs` that compare with bodies.csv column `col`."""
+    for (fname, xc, yc, rcol, label) in refs:
+        if rcol != col:
+            continue
+        path = os.path.join(REFERENCE_DIR, fname)
+        if not os.path.exists(path):
+            continue
+        ref = read_csv(path)
+        if "body" in ref:
+            for rb in sorted(set(int(v) for v in ref["body"])):
+                ii = [i for i, v in enumerate(ref["body"]) if int(v) == rb]
+                ax.plot([ref[xc][i] for i in ii], [ref[yc][i] for i in ii], "o", ms=4, label="%s, body %d" % (label, rb))
+        else:
+            ax.plot(ref[xc], ref[yc], "ko", ms=4, label=label)
 
 
 def plot_bodies(run, out):
     cols = read_csv(os.path.join(run, "bodies.csv"))
     if not cols["time"]:
         return
+    case = read_case(run)
+    specs = case.get("body", [])
     bodies = sorted(set(int(b) for b in cols["body"]))
-    refs = REFERENCES.get(case_name(run), [])
-    panels = [("x", "y", "position (m)"), ("vx", "vy", "velocity (m/s)"), ("fx", "fy", "hydrodynamic force (N/m)"),
-              ("angle", None, "angle (rad)")]
-    fig, axes = plt.subplots(2, 2, figsize=(10, 7))
-    for ax, (a, b, title) in zip([axes[0][0], axes[0][1], axes[1][0], axes[1][1]], panels):
-        for body in bodies:
-            idx = [i for i, bb in enumerate(cols["body"]) if int(bb) == body]
-            t = [cols["time"][i] for i in idx]
-            ax.plot(t, [cols[a][i] for i in idx], label="body %d %s" % (body, a))
-            if b:
-                ax.plot(t, [cols[b][i] for i in idx], "--", label="body %d %s" % (body, b))
-        for (fname, xc, yc, col, label) in refs:
-            if col not in (a, b):
-                continue
-            path = os.path.join(REFERENCE_DIR, fname)
-            if not os.path.exists(path):
-                continue
-            ref = read_csv(path)
-            if "body" in ref:
-                for rb in sorted(set(int(v) for v in ref["body"])):
-                    ii = [i for i, v in enumerate(ref["body"]) if int(v) == rb]
-                    ax.plot([ref[xc][i] for i in ii], [ref[yc][i] for i in ii], "o", ms=4,
-                            label="%s, body %d" % (label, rb))
-            else:
-                ax.plot(ref[xc], ref[yc], "ko", ms=4, label=label)
+    names = {b: (specs[b].get("name", "body %d" % b) if b < len(specs) else "body %d" % b) for b in bodies}
+    refs = REFERENCES.get(case.get("name", ""), [])
+    t_last = max(cols["time"])
+    series = {}
+    for body in bodies:
+        idx = [i for i, bb in enumerate(cols["body"]) if int(bb) == body]
+        series[body] = {k: [cols[k][i] for i in idx] for k in cols}
+    # one panel per quantity, so that each keeps its own scale (y of a migrating cylinder would
+    # be flat next to its x), with the reference curves of that quantity
+    panels = [("x", "x (m)"), ("y", "y (m)"), ("angle", "angle (rad), counter-clockwise"),
+              ("vx", "vx (m/s)"), ("vy", "vy (m/s)"), ("force", "hydrodynamic force (N/m)")]
+    fig, axes = plt.subplots(2, 3, figsize=(14, 7.5))
+    for ax, (col, title) in zip([a for row in axes for a in row], panels):
+        if col == "force":
+            weights = {}
+            for body in bodies:
+                ax.plot(series[body]["time"], series[body]["fx"], label="%s fx" % names[body])
+                ax.plot(series[body]["time"], series[body]["fy"], "--", label="%s fy" % names[body])
+                w = excess_weight_y(case, specs[body]) if body < len(specs) else None
+                if w is not None:
+                    weights.setdefault(round(w, 12), []).append(names[body])
+            for w, who in weights.items():
+                ax.axhline(w, color="0.4", ls=":", lw=1.2,
+                           label="weight - buoyancy of %s (fy at terminal speed)" % ", ".join(who))
+        else:
+            for k, body in enumerate(bodies):
+                if body < len(specs) and specs[body].get("motion", "free") == "fixed":
+                    continue  # a fixed obstacle only has forces to show
+                ax.plot(series[body]["time"], series[body][col], color="C%d" % k, label=names[body])
+            plot_reference(ax, col, refs)
+        if col == "angle" and any(abs(v) > 0 for body in bodies for v in series[body]["omega"]):
+            tw = ax.twinx()
+            for k, body in enumerate(bodies):
+                if body < len(specs) and specs[body].get("motion", "free") == "fixed":
+                    continue
+                tw.plot(series[body]["time"], series[body]["omega"], ":", lw=1, color="C%d" % k,
+                        label="%s omega" % names[body])
+            tw.set_ylabel("omega (rad/s), dotted")
+        # the run's time span: reference points after its end would only squeeze the curves
+        if t_last > 0:
+            ax.set_xlim(0, t_last * 1.02)
         ax.set_xlabel("t (s)")
         ax.set_ylabel(title)
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.suptitle("bodies of '%s'" % (case_name(run) or run))
+        ax.legend(fontsize=7, framealpha=0.7)
+    fig.suptitle("bodies of '%s'" % (case.get("name", "") or run))
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "bodies.png"), dpi=120)
+    fig.savefig(os.path.join(out, "bodies.png"), dpi=110)
     plt.close(fig)
 
 
@@ -168,7 +238,7 @@ def plot_snapshot(run, out):
         return
     files = [ds.get("file") for ds in ET.parse(pvd).getroot().iter("DataSet")]
     times = [float(ds.get("timestep")) for ds in ET.parse(pvd).getroot().iter("DataSet")]
-    if not files:
+    if not files or not os.path.exists(os.path.join(run, files[-1])):
         return
     x, y, arrays = read_vtp(os.path.join(run, files[-1]))
     fields = [("pressure", arrays["pressure"][0], "p (Pa)"), ("vx", arrays["velocity"][0], "vx (m/s)"),
