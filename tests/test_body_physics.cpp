@@ -45,8 +45,8 @@ const RigidGroup& body(const Solver& s) { return s.groups().back(); }
 // (rho_f pi R^2 for a circle): a0 = (rho_s - rho_f) g / (rho_s + rho_f) = 1.090 m/s^2 for the
 // densities of 7.2. Without the added mass it would be (rho_s - rho_f) g / rho_s = 1.962 m/s^2
 // (ratio 1.8). Two departures from 7.2 isolate the added mass: the viscosity is 100 times
-// smaller, because at 7.2's the viscous (Basset-like) force is already a third of the load
-// after 5 ms (mean acceleration over the first 5 ms 0.94 m/s^2), and c = 3 m/s so that the
+// smaller, because at 7.2's the viscous (Basset-like) force adds a sixth to the load after
+// 5 ms (mean acceleration over the first 5 ms 0.94 m/s^2), and c = 3 m/s so that the
 // pressure field is set up within R/c = 0.4 ms (the first instants of a weakly compressible
 // start accelerate the body at the bare 1.96 m/s^2).
 TEST(BodyPhysics, ReleasedCylinderStartsWithTheAddedMassAcceleration) {
