@@ -51,8 +51,12 @@ int main(int argc, char** argv) {
 
   particula::ValidateOptions validate_opt;
   auto* validate = app.add_subcommand(
-      "validate", "Run the validation cases against their exact solutions and write DIR/report.md (exit 3 on a fail)");
-  validate->add_flag("--quick", validate_opt.quick, "The shipped (coarse) resolution instead of twice as fine");
+      "validate",
+      "Run the validation cases (exact solutions and the paper's five body cases) against their references and "
+      "write DIR/report.md (exit 3 on a fail)");
+  validate->add_flag("--quick", validate_opt.quick,
+                     "Analytic cases at the shipped resolution (else twice as fine); paper cases at a coarse level "
+                     "(else the paper's resolution)");
   validate->add_option("--out", validate_opt.out_dir, "Output directory (default runs/validate)");
   validate->add_option("--threads", validate_opt.threads, "OpenMP threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
