@@ -312,20 +312,14 @@ class CudaBackend final : public DeviceBackend {
     const real* p = p_.data();
     const real* rho = rho_.data();
     Mat2* gradV = gradV_.data();
-    Mat2* gradV_n = gradV_n_.data();
     Vec2* lapV = lapV_.data();
     Vec2* G = G_.data();
     real* div_v = div_v_.data();
     each(0, n_, [=] __device__(std::size_t i) {
-      Mat2 L;
-      Vec2 lap;
-      velocity_derivatives_at(c, i, v, L, lap);
-      gradV[i] = L;
-      gradV_n[i] = L;
-      lapV[i] = lap;
-      div_v[i] = trace(L);
+      store_velocity_derivatives(c, i, v, gradV, lapV, div_v);
       G[i] = pressure_gradient_at(c, i, p, rho);
     });
+    gradV_n_.copy_from(gradV_);
   }
 
   void pressure_gradient() override {
@@ -345,11 +339,7 @@ class CudaBackend final : public DeviceBackend {
     const Vec2* v_start = (from == StageStart::StepStart ? v_n_ : v_s_).data();
     Vec2* v = v_.data();
     real* rc = rc_.data();
-    const std::size_t nb = nb_;
-    each(0, n_, [=] __device__(std::size_t i) {
-      rc[i] = rhie_chow_at(c, i, p, rho, G);
-      if (i >= nb) v[i] = momentum_stage(v_start[i], G[i], lapV[i], s);
-    });
+    each(0, n_, [=] __device__(std::size_t i) { rhie_chow_and_momentum_at(c, i, p, rho, G, lapV, v_start, s, rc, v); });
   }
 
   void derivatives_and_continuity(StageStart from, const StageParams& s) override {
@@ -357,21 +347,13 @@ class CudaBackend final : public DeviceBackend {
     const Vec2* v = v_.data();
     const real* rho_start = (from == StageStart::StepStart ? rho_n_ : rho_s_).data();
     const real* rc = rc_.data();
-    const Kind* kind = kind_.data();
     Mat2* gradV = gradV_.data();
     Vec2* lapV = lapV_.data();
     real* div_v = div_v_.data();
     real* rho = rho_.data();
     real* p = p_.data();
-    const std::size_t nb = nb_;
     each(0, n_, [=] __device__(std::size_t i) {
-      Mat2 L;
-      Vec2 lap;
-      velocity_derivatives_at(c, i, v, L, lap);
-      gradV[i] = L;
-      lapV[i] = lap;
-      div_v[i] = trace(L);
-      if (evolves_density(i, nb, kind[i], s.single_layer)) continuity_stage(rho_start[i], div_v[i], rc[i], s, rho[i], p[i]);
+      derivatives_and_continuity_at(c, i, v, rho_start, rc, s, gradV, lapV, div_v, rho, p);
     });
   }
 

@@ -295,6 +295,37 @@ PARTICULA_HD bool particle_unhealthy(bool fluid, Vec2 x, Vec2 v, real rho, real 
   return false;
 }
 
+// ---- one particle's share of a fused pass (the loop body of the CPU loop and the GPU kernel) --
+
+/// Velocity derivatives of `v` at particle i, stored: grad V, lap V and div V = tr(grad V).
+PARTICULA_HD void store_velocity_derivatives(const SweepContext& c, std::size_t i, const Vec2* v, Mat2* grad_v,
+                                             Vec2* lap_v, real* div_v) {
+  Mat2 L;
+  Vec2 lap;
+  velocity_derivatives_at(c, i, v, L, lap);
+  grad_v[i] = L;
+  lap_v[i] = lap;
+  div_v[i] = trace(L);
+}
+
+/// Rhie-Chow bracket of the current P at particle i, then (fluid) the momentum stage from
+/// v_start. Race-free in one loop: it reads P, rho, G of the neighbours and writes only V_i.
+PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContext& c, std::size_t i, const real* p, const real* rho,
+                                            const Vec2* G, const Vec2* lap_v, const Vec2* v_start,
+                                            const StageParams& s, real* rc, Vec2* v) {
+  rc[i] = rhie_chow_at(c, i, p, rho, G);
+  if (i >= c.nb) v[i] = momentum_stage(v_start[i], G[i], lap_v[i], s);
+}
+
+/// Velocity derivatives of the new V at particle i, then its continuity stage from rho_start.
+/// Race-free in one loop: the derivatives read V and the frozen volumes, never rho or P.
+PARTICULA_HD void derivatives_and_continuity_at(const SweepContext& c, std::size_t i, const Vec2* v,
+                                                const real* rho_start, const real* rc, const StageParams& s,
+                                                Mat2* grad_v, Vec2* lap_v, real* div_v, real* rho, real* p) {
+  store_velocity_derivatives(c, i, v, grad_v, lap_v, div_v);
+  if (evolves_density(i, c.nb, c.kind[i], s.single_layer)) continuity_stage(rho_start[i], div_v[i], rc[i], s, rho[i], p[i]);
+}
+
 // ---- rigid surfaces ------------------------------------------------------------------------
 
 /// Pose and motion of a rigid group as the per-particle functions need them (a plain struct
