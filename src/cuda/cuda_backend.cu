@@ -133,7 +133,7 @@ __global__ void group_loads_kernel(const GroupRange* ranges, const Kind* kind, c
   }
 }
 
-enum Counter { kSingularB = 0, kSingularBhat, kWallKept, kNormalFallback, kUnhealthy, kCounters };
+enum Counter { kSingularB = 0, kSingularBhat, kWallKept, kWallExtrapolated, kNormalFallback, kUnhealthy, kCounters };
 
 class CudaBackend final : public DeviceBackend {
  public:
@@ -380,8 +380,9 @@ class CudaBackend final : public DeviceBackend {
       each(0, nb_, [=] __device__(std::size_t i) {
         p_new[i] = p[i];
         if (kind[i] != Kind::Boundary) return;
-        if (!wall_pressure_at(c, i, p, rho, normal[i], acc[i], s.nu * lapV[i], s.f, p_new[i]))
-          atomicAdd(&counters[kWallKept], 1ull);
+        const WallPressureOutcome o = wall_pressure_at(c, i, p, rho, normal[i], acc[i], s.nu * lapV[i], s.f, p_new[i]);
+        if (o == WallPressureOutcome::Kept) atomicAdd(&counters[kWallKept], 1ull);
+        if (o == WallPressureOutcome::Extrapolated) atomicAdd(&counters[kWallExtrapolated], 1ull);
       });
       each(0, nb_, [=] __device__(std::size_t i) {
         if (kind[i] != Kind::Boundary) return;
@@ -528,6 +529,7 @@ class CudaBackend final : public DeviceBackend {
     cnt.singular_B += static_cast<std::int64_t>(h[kSingularB]);
     cnt.singular_Bhat += static_cast<std::int64_t>(h[kSingularBhat]);
     cnt.wall_pressure_kept += static_cast<std::int64_t>(h[kWallKept]);
+    cnt.wall_pressure_extrapolated += static_cast<std::int64_t>(h[kWallExtrapolated]);
     cnt.normal_fallback += static_cast<std::int64_t>(h[kNormalFallback]);
     zero_counters();
   }

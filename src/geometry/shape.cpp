@@ -52,9 +52,9 @@ std::vector<SurfaceSample> sample_loop(const std::vector<Vec2>& v, real d0) {
   std::vector<SurfaceSample> out;
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t prev = (i + n - 1) % n;
-    out.push_back({v[i], unit(nrm[i] + nrm[prev]), 0.5 * (spacing[i] + spacing[prev])});
+    out.push_back({v[i], unit(nrm[i] + nrm[prev]), 0.5 * (spacing[i] + spacing[prev]), true, {nrm[prev], nrm[i]}});
     for (int k = 1; k < parts[i]; ++k)
-      out.push_back({v[i] + (static_cast<real>(k) / parts[i]) * (v[(i + 1) % n] - v[i]), nrm[i], spacing[i]});
+      out.push_back({v[i] + (static_cast<real>(k) / parts[i]) * (v[(i + 1) % n] - v[i]), nrm[i], spacing[i], false, {}});
   }
   return out;
 }
@@ -243,7 +243,7 @@ std::vector<SurfaceSample> Shape::sample_surface(real d0) const {
       for (int k = 0; k < n; ++k) {
         const real t = 2 * M_PI * k / n;
         const Vec2 e{std::cos(t), std::sin(t)};
-        out.push_back({a_ * e, e, 2 * M_PI * a_ / n});
+        out.push_back({a_ * e, e, 2 * M_PI * a_ / n, false, {}});
       }
       break;
     }
@@ -263,7 +263,7 @@ std::vector<SurfaceSample> Shape::sample_surface(real d0) const {
         const real f = cum[k + 1] > cum[k] ? (target - cum[k]) / (cum[k + 1] - cum[k]) : 0;
         const real t = 2 * M_PI * (k + f) / fine;
         const Vec2 x = ellipse_point(a_, b_, t);
-        out.push_back({x, ellipse_normal(a_, b_, x), L / n});
+        out.push_back({x, ellipse_normal(a_, b_, x), L / n, false, {}});
       }
       break;
     }
@@ -276,11 +276,13 @@ std::vector<SurfaceSample> Shape::sample_surface(real d0) const {
       for (int k = 0; k <= na; ++k) {  // arc from -90 to +90 degrees, both corners included
         const real t = -0.5 * M_PI + M_PI * k / na;
         const Vec2 e{std::cos(t), std::sin(t)};
-        const bool corner = k == 0 || k == na;
-        out.push_back({d + a_ * e, corner ? unit(e + Vec2{-1, 0}) : e, corner ? 0.5 * (sa + sf) : sa});
+        if (k == 0 || k == na)
+          out.push_back({d + a_ * e, unit(e + Vec2{-1, 0}), 0.5 * (sa + sf), true, {e, Vec2{-1, 0}}});
+        else
+          out.push_back({d + a_ * e, e, sa, false, {}});
       }
       for (int k = 1; k < nf; ++k)  // flat side from top to bottom
-        out.push_back({d + Vec2{0, a_ - sf * k}, {-1, 0}, sf});
+        out.push_back({d + Vec2{0, a_ - sf * k}, {-1, 0}, sf, false, {}});
       break;
     }
   }

@@ -195,6 +195,7 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   guards.set("singular_B", cnt.singular_B);
   guards.set("singular_Bhat", cnt.singular_Bhat);
   guards.set("wall_pressure_kept", cnt.wall_pressure_kept);
+  guards.set("wall_pressure_extrapolated", cnt.wall_pressure_extrapolated);
   guards.set("normal_fallback", cnt.normal_fallback);
   summary.set("guard_events", guards);
   for (const auto& p : out.probes())
@@ -206,8 +207,9 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   rep.say(fmt::format("{}: t = {:.6g} s after {} steps in {:.2f} s ({:.3g} particle-steps/s on {} threads)", status,
                       solver.time(), solver.step_count(), wall, wall > 0 ? particle_steps / wall : 0.0,
                       omp_get_max_threads()));
-  rep.say(fmt::format("guard events: singular B {}, Bhat fallbacks {} (singular, or unsound at boundary particles), wall pressure kept {}, normal fallback {}",
-                      cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.normal_fallback));
+  rep.say(fmt::format("guard events: singular B {}, Bhat fallbacks {} (singular, or unsound at boundary particles), wall pressure kept {}, extrapolated at corners {}, normal fallback {}",
+                      cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.wall_pressure_extrapolated,
+                      cnt.normal_fallback));
   if (particle_error)
     rep.say(fmt::format("L2 error of the fluid particles' vx against the exact solution: {:.4f} % of the peak speed",
                         100 * *particle_error));

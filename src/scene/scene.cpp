@@ -159,11 +159,51 @@ std::vector<std::pair<Vec2, std::size_t>> dummy_points(const std::vector<Surface
 /// unit factor and 0.03/d0 with a factor 2 (computed on the regular lattice): we scale the
 /// corner volume linearly in the solid wedge angle, 1 for a flat wall and 2 for a right-angled
 /// corner (docs/method-notes.md). Without it a loaded box corner blows up.
-real corner_volume_factor(const SurfacePoint& sp, const WallSpec& ws) {
-  const Vec2 n1 = left_normal(ws), n2 = sp.corner_normal2;
+real corner_volume_factor(Vec2 n1, Vec2 n2) {
   const real fluid_angle = M_PI - std::acos(std::fmax(-1.0, std::fmin(1.0, dot(n1, n2))));
   const real solid_angle = 2 * M_PI - fluid_angle;
   return std::fmax(1.0, 2 * solid_angle / M_PI - 1);
+}
+
+/// A fixed body's surface sample as placed in the particle arrays (world-frame normal).
+struct PlacedSample {
+  bool keep = true;
+  bool junction = false;  // normal and volume factor changed for a body-wall junction
+  Vec2 normal;
+  real volume_factor = 1;
+};
+
+/// A fixed body standing on a wall (the half-disc obstacle of paper 7.5, a block on the floor)
+/// shares a side with the wall. The samples of that side lie on the wall line and face into the
+/// wall: no fluid reaches them, and left in they would be a second, inward-facing surface right
+/// behind the junction, seen by the fluid there through the kernel (it made the fluid particle
+/// in the junction of 7.5 lose its density). They are left out, as the wall particles under the
+/// body are. A corner sample where the body's free side meets the wall is a concave corner of
+/// the fluid, like a box corner: its normal becomes the bisector of the free side's normal and
+/// the wall's, and its volume gets the box corner's factor (corner_volume_factor).
+PlacedSample place_on_walls(const SurfaceSample& smp, Vec2 x, real cth, real sth, const Case& c) {
+  PlacedSample out{true, false, rotate(smp.normal, cth, sth), 1};
+  constexpr real antiparallel = -0.999;
+  for (const auto& ws : c.walls) {
+    if (segment_distance(x, ws.from, ws.to) >= 0.5 * c.d0) continue;
+    const Vec2 nw = left_normal(ws);
+    if (!smp.corner) {
+      if (dot(out.normal, nw) < antiparallel) out.keep = false;
+      continue;
+    }
+    const Vec2 s0 = rotate(smp.sides[0], cth, sth), s1 = rotate(smp.sides[1], cth, sth);
+    const bool f0 = dot(s0, nw) < antiparallel, f1 = dot(s1, nw) < antiparallel;
+    if (f0 && f1) {
+      out.keep = false;
+    } else if (f0 || f1) {
+      const Vec2 free_side = f0 ? s1 : s0, bisector = free_side + nw;
+      if (norm(bisector) < 1e-12) continue;
+      out.junction = true;
+      out.normal = bisector / norm(bisector);
+      out.volume_factor = corner_volume_factor(nw, free_side);
+    }
+  }
+  return out;
 }
 
 /// Signed distance from x to the nearest body (world frame), +inf without bodies.
@@ -219,7 +259,7 @@ Scene build_scene(const Case& c) {
       blocal.push_back(sp.x);  // walls: body frame = world frame (the group starts at the origin)
       bn.push_back(sp.normal);
       bds.push_back(sp.ds);
-      bvol.push_back(sp.ds * d0 * (sp.corner ? corner_volume_factor(sp, ws) : 1.0));
+      bvol.push_back(sp.ds * d0 * (sp.corner ? corner_volume_factor(left_normal(ws), sp.corner_normal2) : 1.0));
       bk.push_back(Kind::Boundary);
       bsrc.push_back(-1);
       bgroup.push_back(static_cast<std::int32_t>(w));
@@ -267,12 +307,26 @@ Scene build_scene(const Case& c) {
     g.inertia = bs.density * bp.shape.polar_moment();
     g.first = bx.size();
     const real cth = std::cos(bs.angle), sth = std::sin(bs.angle);
-    for (const auto& smp : bp.samples) {
-      bx.push_back(g.pos + rotate(smp.x, cth, sth));
+    std::vector<std::size_t> kept;  // indices into bp.samples of the surface particles made
+    for (std::size_t s = 0; s < bp.samples.size(); ++s) {
+      const SurfaceSample& smp = bp.samples[s];
+      const Vec2 x = g.pos + rotate(smp.x, cth, sth);
+      Vec2 normal = smp.normal;
+      real volume_factor = 1;
+      if (g.motion == Motion::Fixed) {
+        const PlacedSample ps = place_on_walls(smp, x, cth, sth, c);
+        if (!ps.keep) continue;
+        if (ps.junction) {
+          normal = rotate(ps.normal, cth, -sth);  // back to the body frame
+          volume_factor = ps.volume_factor;
+        }
+      }
+      kept.push_back(s);
+      bx.push_back(x);
       blocal.push_back(smp.x);
-      bn.push_back(smp.normal);
+      bn.push_back(normal);
       bds.push_back(smp.ds);
-      bvol.push_back(smp.ds * d0);
+      bvol.push_back(smp.ds * d0 * volume_factor);
       bk.push_back(Kind::Boundary);
       bsrc.push_back(-1);
       bgroup.push_back(static_cast<std::int32_t>(sc.groups.size()));
@@ -285,12 +339,13 @@ Scene build_scene(const Case& c) {
           const Vec2 q{ix * d0, iy * d0};
           const real sd = bp.shape.signed_distance(q);
           if (sd > -0.5 * d0 || sd < -(dummy_layers + 0.5) * d0) continue;
-          std::size_t nearest = 0;
-          for (std::size_t s2 = 1; s2 < bp.samples.size(); ++s2)
-            if (norm2(bp.samples[s2].x - q) < norm2(bp.samples[nearest].x - q)) nearest = s2;
+          std::size_t nearest = 0;  // among the surface particles made
+          for (std::size_t s2 = 1; s2 < kept.size(); ++s2)
+            if (norm2(bp.samples[kept[s2]].x - q) < norm2(bp.samples[kept[nearest]].x - q)) nearest = s2;
           bx.push_back(g.pos + rotate(q, cth, sth));
           blocal.push_back(q);
-          bn.push_back(bp.samples[nearest].normal);
+          const Vec2 nearest_normal = bn[g.first + nearest];
+          bn.push_back(nearest_normal);
           bds.push_back(0);
           bvol.push_back(d0 * d0);
           bk.push_back(Kind::Dummy);

@@ -253,14 +253,16 @@ void Solver::boundary_pressure() {
   const Vec2 f = prm_.body_force + (prm_.gravity_in_fluid ? prm_.gravity : Vec2{});
   const SweepContext c = sweep_context();
   p_new_.resize(nb);
-  std::int64_t kept = 0;
+  std::int64_t kept = 0, extrapolated = 0;
   for (int sweep = 0; sweep < prm_.wall_pressure_sweeps; ++sweep) {
-#pragma omp parallel for schedule(static) reduction(+ : kept)
+#pragma omp parallel for schedule(static) reduction(+ : kept, extrapolated)
     for (std::size_t i = 0; i < nb; ++i) {
       p_new_[i] = P_.p[i];
       if (P_.kind[i] != Kind::Boundary) continue;
-      if (!wall_pressure_at(c, i, P_.p.data(), P_.rho.data(), P_.normal[i], P_.acc[i], prm_.nu * lapV_[i], f, p_new_[i]))
-        ++kept;
+      const WallPressureOutcome o =
+          wall_pressure_at(c, i, P_.p.data(), P_.rho.data(), P_.normal[i], P_.acc[i], prm_.nu * lapV_[i], f, p_new_[i]);
+      kept += o == WallPressureOutcome::Kept ? 1 : 0;
+      extrapolated += o == WallPressureOutcome::Extrapolated ? 1 : 0;
     }
     for (std::size_t i = 0; i < nb; ++i) {
       if (P_.kind[i] != Kind::Boundary) continue;
@@ -269,6 +271,7 @@ void Solver::boundary_pressure() {
     }
   }
   counters_.wall_pressure_kept += kept;
+  counters_.wall_pressure_extrapolated += extrapolated;
 }
 
 // ---------------------------------------------------------------------------------------------

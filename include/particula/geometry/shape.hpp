@@ -17,6 +17,8 @@ struct SurfaceSample {
   Vec2 x;       // position (body frame)
   Vec2 normal;  // outward unit normal (from the solid into the fluid)
   real ds;      // surface length it represents
+  bool corner = false;  // a vertex where two sides meet (polygon vertex, end of a half-disc's flat side)
+  Vec2 sides[2];        // at a corner: the outward normals of the two sides meeting there
 };
 
 class Shape {

@@ -202,9 +202,11 @@ PARTICULA_HD real rhie_chow_at(const SweepContext& c, std::size_t i, const real*
 
 /// P.20 for boundary particle i: the pressure that makes the normal momentum balance hold at
 /// the wall, from the neighbours' pressures, the surface acceleration `a`, nu <lap V>_i and the
-/// body force `f` kept in the fluid. Returns false (p_out untouched) when it is undefined.
-PARTICULA_HD bool wall_pressure_at(const SweepContext& c, std::size_t i, const real* p, const real* rho, Vec2 n,
-                                   Vec2 a, Vec2 nu_lap_v, Vec2 f, real& p_out) {
+/// body force `f` kept in the fluid. Where P.20 is ill-conditioned (sharp convex corners, see
+/// kWallPressureMinConditioning) the pressure is extrapolated from the fluid neighbours with the
+/// same momentum balance. Kept: p_out untouched (no fluid neighbour).
+PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContext& c, std::size_t i, const real* p, const real* rho,
+                                                  Vec2 n, Vec2 a, Vec2 nu_lap_v, Vec2 f, real& p_out) {
   WallPressureSums s;
   const real rhoi = rho[i];
   const std::size_t b = c.first_pair(i), st = c.stride;
@@ -213,7 +215,17 @@ PARTICULA_HD bool wall_pressure_at(const SweepContext& c, std::size_t i, const r
     const std::uint32_t j = c.j[k];
     wall_pressure_pair(s, c.grad_w[k], n, p[j], 0.5 * (rhoi + rho[j]), j >= c.nb);
   }
-  return wall_pressure(s, a, nu_lap_v, f, n, p_out);
+  if (wall_pressure_well_conditioned(s) && wall_pressure(s, a, nu_lap_v, f, n, p_out))
+    return WallPressureOutcome::Solved;
+  WallExtrapolationSums e;
+  const Vec2 xi = c.x[i], balance = f + nu_lap_v - a;
+  for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
+    const std::uint32_t j = c.j[k];
+    if (j < c.nb) continue;
+    const Vec2 x_ji = c.domain.separation(c.x[j], xi);
+    wall_extrapolation_pair(e, c.kernel.W(norm(x_ji)), p[j], rho[j], x_ji, balance);
+  }
+  return wall_extrapolation(e, p_out) ? WallPressureOutcome::Extrapolated : WallPressureOutcome::Kept;
 }
 
 // ---- pointwise updates of one particle ------------------------------------------------------
