@@ -1,5 +1,7 @@
 #include "particula/neighbors/neighbor_list.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -53,25 +55,45 @@ void build_neighbor_list(const std::vector<Vec2>& x, const Domain& domain, const
   const std::uint32_t* cell_of = grid.cell_of().data();
   const Vec2* xp = x.data();
 
-  out.start.assign(n + 1, 0);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint32_t count = 0;
-    visit_neighbors(geo, h2, xp, sorted, cstart, cell_of[i], static_cast<std::uint32_t>(i),
-                    [&](std::uint32_t, real) { ++count; });
-    out.start[i + 1] = count;
-  }
-  for (std::size_t i = 0; i < n; ++i) out.start[i + 1] += out.start[i];
-  const std::size_t np = out.start[n];
-  out.j.resize(np);
+  // One pass over the candidates: each thread takes a contiguous block of particles, appends
+  // their pairs to its own buffer and counts them; the blocks' offsets then follow from the
+  // buffer sizes, and each thread turns its counts into offsets and copies its buffer in place.
+  // The pairs of each i come out in the same order as a serial build.
+  out.start.resize(n + 1);
+  out.start[0] = 0;
+  const int threads = omp_get_max_threads();
+  if (out.thread_pairs.size() < static_cast<std::size_t>(threads)) out.thread_pairs.resize(threads);
+  out.thread_offset.assign(threads + 1, 0);
+  std::size_t* offset = out.thread_offset.data();
   real dmin2 = std::numeric_limits<real>::infinity();
-#pragma omp parallel for schedule(static) reduction(min : dmin2)
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint32_t p = out.start[i];
-    visit_neighbors(geo, h2, xp, sorted, cstart, cell_of[i], static_cast<std::uint32_t>(i), [&](std::uint32_t j, real d2) {
-      out.j[p++] = j;
-      dmin2 = std::min(dmin2, d2);
-    });
+#pragma omp parallel num_threads(threads) reduction(min : dmin2)
+  {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
+    std::vector<std::uint32_t>& buf = out.thread_pairs[t];
+    buf.clear();
+    for (std::size_t i = lo; i < hi; ++i) {
+      const std::size_t before = buf.size();
+      visit_neighbors(geo, h2, xp, sorted, cstart, cell_of[i], static_cast<std::uint32_t>(i),
+                      [&](std::uint32_t j, real d2) {
+                        buf.push_back(j);
+                        dmin2 = std::min(dmin2, d2);
+                      });
+      out.start[i + 1] = static_cast<std::uint32_t>(buf.size() - before);
+    }
+    offset[t + 1] = buf.size();
+#pragma omp barrier
+#pragma omp single
+    {
+      for (int k = 0; k < nt; ++k) offset[k + 1] += offset[k];
+      out.j.resize(offset[nt]);
+    }
+    std::uint32_t acc = static_cast<std::uint32_t>(offset[t]);
+    for (std::size_t i = lo; i < hi; ++i) {
+      acc += out.start[i + 1];
+      out.start[i + 1] = acc;
+    }
+    std::copy(buf.begin(), buf.end(), out.j.begin() + static_cast<std::ptrdiff_t>(offset[t]));
   }
   out.min_distance = std::sqrt(dmin2);
 }

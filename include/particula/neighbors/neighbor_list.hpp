@@ -101,6 +101,10 @@ struct NeighborList {
   std::vector<std::uint32_t> start;  // size n+1; pairs of i are [start[i], start[i+1])
   std::vector<std::uint32_t> j;
   real min_distance = 0;             // smallest |r_ij| over all pairs (d_min of P.29-P.31)
+  // Per-thread pair buffers of the one-pass build, kept between builds so that a step
+  // allocates nothing once they have grown.
+  std::vector<std::vector<std::uint32_t>> thread_pairs;
+  std::vector<std::size_t> thread_offset;
 
   std::size_t size() const { return start.empty() ? 0 : start.size() - 1; }
   std::size_t pair_count() const { return j.size(); }
