@@ -37,7 +37,11 @@ void CellGrid::bin(const std::vector<Vec2>& x) {
   for (std::size_t i = 0; i < n; ++i) cell_of_[i] = static_cast<std::uint32_t>(geo_.cell_index(x[i]));
   start_.assign(ncell + 1, 0);
   for (std::size_t i = 0; i < n; ++i) ++start_[cell_of_[i] + 1];
-  for (std::size_t c = 0; c < ncell; ++c) start_[c + 1] += start_[c];
+  max_occupancy_ = 0;
+  for (std::size_t c = 0; c < ncell; ++c) {
+    max_occupancy_ = std::max<std::size_t>(max_occupancy_, start_[c + 1]);
+    start_[c + 1] += start_[c];
+  }
   sorted_.resize(n);
   fill_.assign(start_.begin(), start_.end() - 1);
   for (std::size_t i = 0; i < n; ++i) sorted_[fill_[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
@@ -65,23 +69,28 @@ void build_neighbor_list(const std::vector<Vec2>& x, const Domain& domain, const
   if (out.thread_pairs.size() < static_cast<std::size_t>(threads)) out.thread_pairs.resize(threads);
   out.thread_offset.assign(threads + 1, 0);
   std::size_t* offset = out.thread_offset.data();
+  const std::size_t max_candidates = 9 * grid.max_occupancy();
   real dmin2 = std::numeric_limits<real>::infinity();
 #pragma omp parallel num_threads(threads) reduction(min : dmin2)
   {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
     const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
     std::vector<std::uint32_t>& buf = out.thread_pairs[t];
-    buf.clear();
+    std::size_t used = 0;
     for (std::size_t i = lo; i < hi; ++i) {
-      const std::size_t before = buf.size();
+      // Room for every candidate of i's 3x3 cells, so the visit writes without checks.
+      if (used + max_candidates > buf.size()) buf.resize(std::max(2 * buf.size(), used + max_candidates));
+      std::uint32_t* dst = buf.data() + used;
+      std::uint32_t count = 0;
       visit_neighbors(geo, h2, xp, sorted, cstart, cell_of[i], static_cast<std::uint32_t>(i),
                       [&](std::uint32_t j, real d2) {
-                        buf.push_back(j);
+                        dst[count++] = j;
                         dmin2 = std::min(dmin2, d2);
                       });
-      out.start[i + 1] = static_cast<std::uint32_t>(buf.size() - before);
+      used += count;
+      out.start[i + 1] = count;
     }
-    offset[t + 1] = buf.size();
+    offset[t + 1] = used;
 #pragma omp barrier
 #pragma omp single
     {
@@ -93,7 +102,8 @@ void build_neighbor_list(const std::vector<Vec2>& x, const Domain& domain, const
       acc += out.start[i + 1];
       out.start[i + 1] = acc;
     }
-    std::copy(buf.begin(), buf.end(), out.j.begin() + static_cast<std::ptrdiff_t>(offset[t]));
+    std::copy(buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(used),
+              out.j.begin() + static_cast<std::ptrdiff_t>(offset[t]));
   }
   out.min_distance = std::sqrt(dmin2);
 }

@@ -53,6 +53,25 @@ struct GridGeometry {
     }
     return k;
   }
+
+  /// The cells of neighbor_cells(c), in the same order, as runs of consecutive cell indices:
+  /// run r is cells first[r] .. last[r]. A row's three cells are one run unless a periodic
+  /// wrap splits it, so a neighbour visit walks 3 contiguous stretches of the cell-sorted
+  /// particles instead of 9.
+  PARTICULA_HD int neighbor_cell_runs(int c, int first[9], int last[9]) const {
+    int cells[9];
+    const int n = neighbor_cells(c, cells);
+    int runs = 0;
+    for (int m = 0; m < n; ++m) {
+      if (runs > 0 && cells[m] == last[runs - 1] + 1) {
+        last[runs - 1] = cells[m];
+      } else {
+        first[runs] = last[runs] = cells[m];
+        ++runs;
+      }
+    }
+    return runs;
+  }
 };
 
 /// Calls emit(j, d2) for every neighbour j != i of particle i with |r_ij|^2 = d2 < h2, in a
@@ -63,11 +82,11 @@ template <class Emit>
 PARTICULA_HD void visit_neighbors(const GridGeometry& g, real h2, const Vec2* x, const std::uint32_t* sorted,
                                   const std::uint32_t* cell_start, std::uint32_t cell_of_i, std::uint32_t i,
                                   Emit&& emit) {
-  int cells[9];
-  const int nc = g.neighbor_cells(static_cast<int>(cell_of_i), cells);
+  int first[9], last[9];
+  const int runs = g.neighbor_cell_runs(static_cast<int>(cell_of_i), first, last);
   const Vec2 xi = x[i];
-  for (int k = 0; k < nc; ++k)
-    for (std::uint32_t s = cell_start[cells[k]]; s < cell_start[cells[k] + 1]; ++s) {
+  for (int r = 0; r < runs; ++r)
+    for (std::uint32_t s = cell_start[first[r]]; s < cell_start[last[r] + 1]; ++s) {
       const std::uint32_t j = sorted[s];
       if (j == i) continue;
       const real d2 = norm2(g.domain.separation(xi, x[j]));
@@ -91,10 +110,13 @@ class CellGrid {
   const std::vector<std::uint32_t>& cell_start() const { return start_; }
   const std::vector<std::uint32_t>& cell_of() const { return cell_of_; }
   int neighbor_cells(int c, int out[9]) const { return geo_.neighbor_cells(c, out); }
+  /// Most particles in one cell at the last binning.
+  std::size_t max_occupancy() const { return max_occupancy_; }
 
  private:
   GridGeometry geo_;
   std::vector<std::uint32_t> start_, sorted_, cell_of_, fill_;
+  std::size_t max_occupancy_ = 0;
 };
 
 struct NeighborList {
