@@ -3,7 +3,7 @@
 #   make test   installs what is missing, builds Release, runs the tests (CTest)
 JOBS ?= $(shell nproc)
 
-.PHONY: deps build demo test test-sanitize bench clean
+.PHONY: deps build demo test test-sanitize bench bench-cases clean
 
 deps:
 	scripts/install-deps
@@ -32,6 +32,18 @@ test-sanitize: deps
 bench: build
 	./build/release/bench/particula_bench_e2e --d0 1e-4 --steps 30 $(BENCH_ARGS)
 	./build/release/bench/particula_bench --benchmark_min_time=0.5
+
+# Time to solution of the five paper cases at the paper's resolution (the case files as shipped):
+# each runs BENCH_STEPS steps after 20 warm-up steps and the benchmark extrapolates to the case's
+# end time at the measured wall time per step. A few minutes in all on 2 cores.
+# BENCH_ARGS adds options, e.g. --backend cuda or --threads 1.
+BENCH_STEPS ?= 300
+PAPER_CASES = shear_migration falling_cylinder two_cylinders_shear dkt ellipse_obstacle
+bench-cases: build
+	@for c in $(PAPER_CASES); do \
+	  ./build/release/bench/particula_bench_e2e --case cases/$$c.toml --steps $(BENCH_STEPS) --warmup 20 $(BENCH_ARGS) \
+	    | grep -E '^(case|particles|throughput|to the end|RESULT)' || exit 1; \
+	done
 
 clean:
 	rm -rf build

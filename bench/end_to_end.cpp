@@ -6,8 +6,13 @@
 //                       [--backend cpu|cuda] [--set key=value]...
 //
 // Output is one human-readable block and one machine-readable line starting with "RESULT".
+// It ends with an estimate of the time to solution of the whole case (to its time.end): the
+// steps still to go at the mean time step of the timed steps, at the measured wall time per
+// step. The time step changes with the flow (P.29-P.31), so the estimate is only as good as the
+// timed steps are typical; `make bench-cases` prints it for the five paper cases.
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -99,6 +104,7 @@ int main(int argc, char** argv) {
       return 3;
     }
   const PhaseTimes before = solver.phase_times();
+  const double t_sim0 = solver.time();
   const auto t0 = std::chrono::steady_clock::now();
   for (int s = 0; s < o.steps; ++s)
     if (auto f = solver.step()) {
@@ -110,6 +116,11 @@ int main(int argc, char** argv) {
   const double n = static_cast<double>(solver.particle_count());
   const double rate = n * o.steps / wall;
   const int threads = omp_get_max_threads();
+  // Time to solution: the steps taken so far plus those left at the mean dt of the timed steps.
+  const double mean_dt = (solver.time() - t_sim0) / o.steps;
+  const double steps_total =
+      static_cast<double>(solver.step_count()) + std::max(0.0, (c.t_end - solver.time()) / mean_dt);
+  const double solution_s = steps_total * wall / o.steps;
   std::printf("case              %s, d0 = %g m\n", c.name.c_str(), c.d0);
   std::printf("particles         %.0f (%zu pairs, %.1f per particle)\n", n, solver.last_pair_count(),
               static_cast<double>(solver.last_pair_count()) / n);
@@ -131,10 +142,14 @@ int main(int argc, char** argv) {
   line("integration", p.integration);
   line("shifting", p.shifting);
   std::printf("  %-15s %.5f  (outside the timed phases: %.5f)\n", "total", tot / o.steps, (wall - tot) / o.steps);
+  std::printf("to the end, t = %g s: about %.0f steps at the mean dt %.4g s of the timed steps, %.0f s (%.1f min) of wall time "
+              "(estimate)\n",
+              c.t_end, steps_total, mean_dt, solution_s, solution_s / 60);
   std::printf(
       "RESULT case=%s d0=%g backend=%s threads=%d particles=%.0f steps=%d wall_s=%.4f particle_steps_per_s=%.4g "
-      "neighbors=%.4f geometry=%.4f operators=%.4f wall_pressure=%.4f bodies=%.4f integration=%.4f shifting=%.4f\n",
+      "neighbors=%.4f geometry=%.4f operators=%.4f wall_pressure=%.4f bodies=%.4f integration=%.4f shifting=%.4f "
+      "t_end=%g steps_to_end=%.0f time_to_solution_s=%.0f\n",
       c.name.c_str(), c.d0, solver.backend_name(), threads, n, o.steps, wall, rate, p.neighbors, p.geometry, p.operators, p.wall_pressure,
-      p.bodies, p.integration, p.shifting);
+      p.bodies, p.integration, p.shifting, c.t_end, steps_total, solution_s);
   return 0;
 }

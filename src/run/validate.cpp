@@ -107,6 +107,30 @@ double first_crossing(const std::vector<double>& t, const std::vector<double>& q
   return std::nan("");
 }
 
+/// The largest deviation (by magnitude, the latest of equals) of a run from a reference curve
+/// over the sample times, and where it was.
+struct WorstDeviation {
+  double d = 0, t = 0;
+  int n = 0;
+  void add(double at, double deviation) {
+    if (std::fabs(deviation) >= std::fabs(d)) d = deviation, t = at;
+    ++n;
+  }
+};
+
+/// A check that passes when the worst deviation is within +-`tol`.
+ValidationCheck worst_deviation_check(std::string quantity, const WorstDeviation& w, std::string reference, double tol,
+                                      std::string tol_text) {
+  ValidationCheck c;
+  c.quantity = std::move(quantity);
+  c.value = w.d;
+  c.shown = fmt::format("{:+.2e} worst (t = {:.3g} s)", w.d, w.t);
+  c.reference = std::move(reference);
+  c.tolerance = std::move(tol_text);
+  c.pass = std::fabs(w.d) <= tol;
+  return c;
+}
+
 /// Whether the run was at most as coarse as the shipped (paper) level of its case file.
 bool at_paper_level(const Case& c) {
   try {
@@ -234,24 +258,12 @@ std::vector<ValidationCheck> check_settling_cylinder(const fs::path& run_dir, co
   out.push_back(r);
   // centre height against Zhang et al. 2019 at their times within the run
   const Curve zy = reference_curve("zhang2019_settling_y.csv", "y");
-  double worst = 0, worst_t = 0;
-  int n = 0;
-  for (std::size_t i = 0; i < zy.t.size(); ++i) {
-    if (zy.t[i] > h.t.back()) continue;
-    const double d = interpolate(h.t, h.y, zy.t[i]) - zy.v[i];
-    if (std::fabs(d) >= std::fabs(worst)) worst = d, worst_t = zy.t[i];
-    ++n;
-  }
-  if (n > 0) {
-    ValidationCheck y;
-    y.quantity = fmt::format("centre height y - Zhang y at {} reference times (m)", n);
-    y.value = worst;
-    y.shown = fmt::format("{:+.2e} worst (t = {:.3f} s)", worst, worst_t);
-    y.reference = "Zhang et al. 2019 (FPM)";
-    y.tolerance = "± 1.5e-3 m";
-    y.pass = std::fabs(worst) <= 1.5e-3;
-    out.push_back(y);
-  }
+  WorstDeviation dy;
+  for (std::size_t i = 0; i < zy.t.size(); ++i)
+    if (zy.t[i] <= h.t.back()) dy.add(zy.t[i], interpolate(h.t, h.y, zy.t[i]) - zy.v[i]);
+  if (dy.n > 0)
+    out.push_back(worst_deviation_check(fmt::format("centre height y - Zhang y at {} reference times (m)", dy.n), dy,
+                                        "Zhang et al. 2019 (FPM)", 1.5e-3, "± 1.5e-3 m"));
   return out;
 }
 
@@ -273,24 +285,12 @@ std::vector<ValidationCheck> check_shear_migration(const fs::path& run_dir, cons
   e.pass = std::fabs(off - off_ref) <= tol;
   out.push_back(e);
   // trajectory for 5 s <= t <= 40 s
-  double worst = 0, worst_t = 0;
-  int n = 0;
-  for (std::size_t i = 0; i < h.size(); ++i) {
-    if (h.t[i] < 5 || h.t[i] > 40) continue;
-    const double d = h.y[i] - interpolate(feng.t, feng.v, h.t[i]);
-    if (std::fabs(d) >= std::fabs(worst)) worst = d, worst_t = h.t[i];
-    ++n;
-  }
-  if (n > 0) {
-    ValidationCheck y;
-    y.quantity = fmt::format("y - Feng y for 5 s <= t <= {:.3g} s (m)", std::min(40.0, t_end));
-    y.value = worst;
-    y.shown = fmt::format("{:+.2e} worst (t = {:.3g} s)", worst, worst_t);
-    y.reference = "Feng & Michaelides 2002 (LBM)";
-    y.tolerance = "± 2.5e-4 m";
-    y.pass = std::fabs(worst) <= 2.5e-4;
-    out.push_back(y);
-  }
+  WorstDeviation dy;
+  for (std::size_t i = 0; i < h.size(); ++i)
+    if (h.t[i] >= 5 && h.t[i] <= 40) dy.add(h.t[i], h.y[i] - interpolate(feng.t, feng.v, h.t[i]));
+  if (dy.n > 0)
+    out.push_back(worst_deviation_check(fmt::format("y - Feng y for 5 s <= t <= {:.3g} s (m)", std::min(40.0, t_end)),
+                                        dy, "Feng & Michaelides 2002 (LBM)", 2.5e-4, "± 2.5e-4 m"));
   // rotation rate at the end (about -gamma/2, gamma from the wall speeds)
   double gamma = 0;
   if (cs.walls.size() >= 2) gamma = std::fabs(cs.walls[1].velocity.x - cs.walls[0].velocity.x) / H;
