@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -78,15 +79,30 @@ void build_neighbor_list(const std::vector<Vec2>& x, const Domain& domain, const
     std::vector<std::uint32_t>& buf = out.thread_pairs[t];
     std::size_t used = 0;
     for (std::size_t i = lo; i < hi; ++i) {
-      // Room for every candidate of i's 3x3 cells, so the visit writes without checks.
+      // Room for every candidate of i's 3x3 cells (i included), so the visit writes without checks.
       if (used + max_candidates > buf.size()) buf.resize(std::max(2 * buf.size(), used + max_candidates));
       std::uint32_t* dst = buf.data() + used;
       std::uint32_t count = 0;
-      visit_neighbors(geo, h2, xp, sorted, cstart, cell_of[i], static_cast<std::uint32_t>(i),
-                      [&](std::uint32_t j, real d2) {
-                        dst[count++] = j;
-                        dmin2 = std::min(dmin2, d2);
-                      });
+      // Branch-free: every candidate is written and the count advances only for a neighbour.
+      // Once the flow has disordered the lattice, whether a candidate lies inside the support
+      // is unpredictable, and a branch on it cost more than the rest of the search (measured:
+      // the search took 2.3x longer after 3000 steps of the falling cylinder than at the start).
+      const std::uint32_t self = static_cast<std::uint32_t>(i);
+      visit_candidates(geo, xp, sorted, cstart, cell_of[i], self, [&](std::uint32_t j, real d2) {
+        const std::uint32_t keep = static_cast<std::uint32_t>(is_neighbor(self, j, d2, h2));
+        dst[count] = j;
+        count += keep;
+        // d2 of a kept candidate, +inf otherwise, by a bit mask: GCC turns a select on `keep`
+        // back into the branch this loop avoids.
+        const std::uint64_t all = 0 - static_cast<std::uint64_t>(keep);  // all ones if kept
+        static_assert(sizeof(real) == sizeof(std::uint64_t), "the mask assumes a double");
+        std::uint64_t bits;
+        std::memcpy(&bits, &d2, sizeof bits);
+        bits = (bits & all) | (~all & 0x7FF0000000000000ull);  // 0x7FF0... = +inf
+        real masked;
+        std::memcpy(&masked, &bits, sizeof masked);
+        dmin2 = std::min(dmin2, masked);
+      });
       used += count;
       out.start[i + 1] = count;
     }

@@ -74,24 +74,36 @@ struct GridGeometry {
   }
 };
 
-/// Calls emit(j, d2) for every neighbour j != i of particle i with |r_ij|^2 = d2 < h2, in a
-/// fixed order (cells in neighbor_cells order, particles in cell order), so the list and every
-/// sum over it are independent of the thread count and identical on the CPU and the GPU.
+/// Calls consider(j, d2) for every candidate j of particle i (i itself included): the particles
+/// of i's 3x3 cells, in a fixed order (cells in neighbor_cells order, particles in cell order).
 /// `sorted` lists particle indices cell by cell, cell c being sorted[cell_start[c] .. cell_start[c+1]).
-template <class Emit>
-PARTICULA_HD void visit_neighbors(const GridGeometry& g, real h2, const Vec2* x, const std::uint32_t* sorted,
-                                  const std::uint32_t* cell_start, std::uint32_t cell_of_i, std::uint32_t i,
-                                  Emit&& emit) {
+template <class Consider>
+PARTICULA_HD void visit_candidates(const GridGeometry& g, const Vec2* x, const std::uint32_t* sorted,
+                                   const std::uint32_t* cell_start, std::uint32_t cell_of_i, std::uint32_t i,
+                                   Consider&& consider) {
   int first[9], last[9];
   const int runs = g.neighbor_cell_runs(static_cast<int>(cell_of_i), first, last);
   const Vec2 xi = x[i];
   for (int r = 0; r < runs; ++r)
     for (std::uint32_t s = cell_start[first[r]]; s < cell_start[last[r] + 1]; ++s) {
       const std::uint32_t j = sorted[s];
-      if (j == i) continue;
-      const real d2 = norm2(g.domain.separation(xi, x[j]));
-      if (d2 < h2) emit(j, d2);
+      consider(j, norm2(g.domain.separation(xi, x[j])));
     }
+}
+
+/// Whether candidate j of particle i is a neighbour: j != i and |r_ij|^2 = d2 < h2.
+PARTICULA_HD bool is_neighbor(std::uint32_t i, std::uint32_t j, real d2, real h2) { return (j != i) & (d2 < h2); }
+
+/// Calls emit(j, d2) for every neighbour j of particle i (is_neighbor), in the order of
+/// visit_candidates, so the list and every sum over it are independent of the thread count and
+/// identical on the CPU and the GPU.
+template <class Emit>
+PARTICULA_HD void visit_neighbors(const GridGeometry& g, real h2, const Vec2* x, const std::uint32_t* sorted,
+                                  const std::uint32_t* cell_start, std::uint32_t cell_of_i, std::uint32_t i,
+                                  Emit&& emit) {
+  visit_candidates(g, x, sorted, cell_start, cell_of_i, i, [&](std::uint32_t j, real d2) {
+    if (is_neighbor(i, j, d2, h2)) emit(j, d2);
+  });
 }
 
 /// The cell grid with its particle binning (host side).
