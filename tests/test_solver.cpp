@@ -3,8 +3,12 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <limits>
+#include <vector>
 
 #include "case_builders.hpp"
 #include "particula/scene/scene.hpp"
@@ -67,12 +71,23 @@ TEST(Solver, NeighbourListMatchesBruteForce) {
   const auto& P = s.particles();
   const auto& nl = s.neighbors();
   const real h = s.params().h;
+  real closest = std::numeric_limits<real>::infinity();
   for (std::size_t i = 0; i < P.size(); ++i) {
-    std::size_t brute = 0;
-    for (std::size_t j = 0; j < P.size(); ++j)
-      if (j != i && norm(s.domain().separation(P.x[i], P.x[j])) < h) ++brute;
-    EXPECT_EQ(nl.start[i + 1] - nl.start[i], brute) << "particle " << i;
+    std::vector<std::uint32_t> brute;
+    for (std::size_t j = 0; j < P.size(); ++j) {
+      const real r = norm(s.domain().separation(P.x[i], P.x[j]));
+      if (j != i && r < h) {
+        brute.push_back(static_cast<std::uint32_t>(j));
+        closest = std::min(closest, r);
+      }
+    }
+    std::vector<std::uint32_t> listed(nl.j.begin() + nl.start[i], nl.j.begin() + nl.start[i + 1]);
+    std::sort(listed.begin(), listed.end());
+    EXPECT_EQ(listed, brute) << "particle " << i;
   }
+  // d_min of the time-step control (P.29-P.31), reduced over the kept candidates only.
+  EXPECT_DOUBLE_EQ(nl.min_distance, closest);
+  EXPECT_GT(closest, 0.0);
 }
 
 TEST(Solver, DummyParticleBaselineRunsCouette) {
