@@ -207,7 +207,7 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   rep.say(fmt::format("{}: t = {:.6g} s after {} steps in {:.2f} s ({:.3g} particle-steps/s on {} threads)", status,
                       solver.time(), solver.step_count(), wall, wall > 0 ? particle_steps / wall : 0.0,
                       omp_get_max_threads()));
-  rep.say(fmt::format("guard events: singular B {}, Bhat fallbacks {} (singular, or unsound at boundary particles), wall pressure kept {}, extrapolated at corners {}, normal fallback {}",
+  rep.say(fmt::format("guard events: singular B {}, singular Bhat at fluid particles {}, wall pressure kept {}, extrapolated at corners {}, normal fallback {}",
                       cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.wall_pressure_extrapolated,
                       cnt.normal_fallback));
   if (particle_error)

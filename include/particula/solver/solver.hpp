@@ -63,7 +63,7 @@ struct PhysicsParams {
 /// Counters of guarded events (written to the run log).
 struct SolverCounters {
   std::int64_t singular_B = 0;      // renormalization matrix singular -> B = I
-  std::int64_t singular_Bhat = 0;   // Laplacian system singular -> Bhat = I
+  std::int64_t singular_Bhat = 0;   // fluid particle's Laplacian system singular -> Bhat = k I
   std::int64_t wall_pressure_kept = 0;  // P.20 denominator vanished -> previous P kept
   std::int64_t wall_pressure_extrapolated = 0;  // P.20 ill-conditioned (sharp corner) -> extrapolated
   std::int64_t normal_fallback = 0;     // P.18 sum vanished -> analytic normal used
