@@ -279,7 +279,7 @@ class CudaBackend final : public DeviceBackend {
       lap_esum[i] = g.lap_esum;
       if (kind[i] == Kind::Dummy) return;
       if (!g.B_ok) atomicAdd(&counters[kSingularB], 1ull);
-      if (i >= nb && !g.Bhat_ok) atomicAdd(&counters[kSingularBhat], 1ull);  // fluid only, as on the CPU
+      if (!g.Bhat_ok) atomicAdd(&counters[kSingularBhat], 1ull);
       if (i < nb && kernel_normals && kind[i] == Kind::Boundary && !kernel_normal(g.normal_sum, normal[i]))
         atomicAdd(&counters[kNormalFallback], 1ull);
     });

@@ -165,10 +165,7 @@ void Solver::geometry_sweep() {
     lap_esum_[i] = g.lap_esum;
     if (P_.kind[i] == Kind::Dummy) continue;
     bad_B += g.B_ok ? 0 : 1;
-    // Only a fluid particle's failure is an event: at boundary particles (one-sided support)
-    // Bhat = k I is the designed guard (method-notes "Bhat at boundary particles") and is taken
-    // at every one of them in the paper's cases, so counting it would drown the real warnings.
-    bad_Bhat += (i >= nb && !g.Bhat_ok) ? 1 : 0;
+    bad_Bhat += g.Bhat_ok ? 0 : 1;
     // P.18 normal; on failure the analytic normal set by place_boundary stays.
     if (i < nb && kernel_normals && P_.kind[i] == Kind::Boundary && !kernel_normal(g.normal_sum, P_.normal[i]))
       ++bad_normal;

@@ -77,7 +77,9 @@ struct GeometryAt {
   Vec2 normal_sum;       // sum_j w_j gradW_ij, the P.18 normal before normalization
   Vec2 shift_direction;  // sum_j (rbar^2 / r^2) e_ij of P.33, before the factor beta V_max dt
   Vec2 lap_esum;         // sum_j (Laplacian weight) e_ij
-  bool B_ok = true, Bhat_ok = true;
+  bool B_ok = true;
+  bool Bhat_ok = true;  // false only for a fluid particle's singular system: at boundary particles
+                        // Bhat = k I is the designed guard (method-notes), not an event
 };
 
 /// The geometry sweep for particle i: B_i (P.6), Bhat_i (P.11, with the soundness guard for
@@ -125,7 +127,7 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
     lap_w[k] = g.r;
   }
   out.B_ok = renormalization_tensor(S, out.B);
-  out.Bhat_ok = laplacian_correction_tensor(mom, out.B, out.Bhat, i < c.nb);
+  out.Bhat_ok = laplacian_correction_tensor(mom, out.B, out.Bhat, i < c.nb) || i < c.nb;
   out.rbar = np > 0 ? rsum / static_cast<real>(np) : d0;
   const real rbar2 = out.rbar * out.rbar;
   const bool fluid = i >= c.nb;
