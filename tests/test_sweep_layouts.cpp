@@ -107,7 +107,7 @@ Fields run_sweeps(SweepContext c, std::size_t slots, const Particles& P, const s
   f.rc.resize(n);
   f.v_new = v;
   for (std::size_t i = 0; i < n; ++i)
-    rhie_chow_and_momentum_at(c, i, p.data(), rho.data(), f.G.data(), f.lapV.data(), v.data(), s, f.rc.data(),
+    rhie_chow_and_momentum_at(c, i, p.data(), rho.data(), f.G.data(), f.gradV.data(), f.lapV.data(), v.data(), s, f.rc.data(),
                               f.v_new.data());
   f.rho = rho;
   f.p = p;
@@ -184,6 +184,7 @@ void compare_layouts(const Case& cs, std::uint64_t seed, LayoutReport& rep) {
   base.x = P.x.data();
   base.vol = vol.data();
   base.kind = P.kind.data();
+  base.group = P.group.data();
   base.fatehi_manzari = sc.params.fatehi_manzari;
   SweepContext csr = base, el = base;
   csr.start = nl.start.data();
@@ -199,7 +200,8 @@ void compare_layouts(const Case& cs, std::uint64_t seed, LayoutReport& rep) {
     const GeometryAt &ga = a.geo[i], &gb = b.geo[i];
     ASSERT_TRUE(same_bits(ga.B, gb.B) && same_bits(ga.Bhat, gb.Bhat) && same_bits(ga.rbar, gb.rbar) &&
                 same_bits(ga.normal_sum, gb.normal_sum) && same_bits(ga.shift_direction, gb.shift_direction) &&
-                same_bits(ga.lap_esum, gb.lap_esum) && ga.B_ok == gb.B_ok && ga.Bhat_ok == gb.Bhat_ok)
+                same_bits(ga.lap_esum, gb.lap_esum) && ga.B_ok == gb.B_ok && ga.Bhat_ok == gb.Bhat_ok &&
+                ga.near.a == gb.near.a && ga.near.b == gb.near.b)
         << "geometry of particle " << i;
     for (std::uint32_t q = 0; q < ell.count[i]; ++q) {
       const std::size_t kc = nl.start[i] + q, ke = q * stride + i;

@@ -320,6 +320,16 @@ std::vector<KeySpec> make_schema() {
       real_key("numerics.shifting_beta", "-", def(0.01), closed(0, 0.2),
                "Strength of particle shifting, which keeps the particle distribution uniform.",
                field(&Case::shifting_beta)),
+      real_key("numerics.odd_even_damping", "-", def(0.005), closed(0, 0.05),
+               "Strength alpha of the damping of odd-even (checkerboard) velocity modes, kappa = alpha c h times "
+               "the difference of the compact and the wide Laplacian of V (zero for quadratic fields; "
+               "docs/method-notes.md). 0 is the paper's scheme.",
+               field(&Case::odd_even_damping)),
+      real_key("numerics.surface_guard", "-", def(0.25), closed(0, 0.45),
+               "Keep-out distance of fluid particles from walls and body surfaces, in d0: a fluid particle "
+               "closer than this is put back and loses its velocity into the surface (0 turns the guard off; "
+               "docs/method-notes.md).",
+               field(&Case::surface_guard)),
       int_key("numerics.wall_pressure_sweeps", def(std::int64_t{1}), closed(1, 50),
               "Sweeps of the single-layer wall pressure update per step.",
               field(&Case::wall_pressure_sweeps)),

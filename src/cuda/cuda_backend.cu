@@ -133,7 +133,10 @@ __global__ void group_loads_kernel(const GroupRange* ranges, const Kind* kind, c
   }
 }
 
-enum Counter { kSingularB = 0, kSingularBhat, kWallKept, kWallExtrapolated, kNormalFallback, kUnhealthy, kCounters };
+enum Counter {
+  kSingularB = 0, kSingularBhat, kWallKept, kWallExtrapolated, kNormalFallback, kSurfacePushed, kGapSqueezed, kUnhealthy,
+  kCounters
+};
 
 class CudaBackend final : public DeviceBackend {
  public:
@@ -167,6 +170,7 @@ class CudaBackend final : public DeviceBackend {
     for (auto* a : {&rho_n_, &rho_s_, &p_n_, &vol_, &rc_, &div_v_, &scratch_real_}) a->resize(n_);
     for (auto* a : {&v_n_, &v_s_, &lapV_, &G_, &shift_dir_, &lap_esum_}) a->resize(n_);
     for (auto* a : {&gradV_, &gradV_n_}) a->resize(n_);
+    for (auto* a : {&near_a_, &near_b_}) a->resize(n_);
     p_new_.resize(nb_);
     count_.resize(n_);
     cell_of_.resize(n_);
@@ -270,6 +274,8 @@ class CudaBackend final : public DeviceBackend {
     real* lap_w = lap_w_.data();
     Vec2* shift_dir = shift_dir_.data();
     Vec2* lap_esum = lap_esum_.data();
+    std::uint32_t* near_a = near_a_.data();
+    std::uint32_t* near_b = near_b_.data();
     Vec2* normal = normal_.data();
     const Kind* kind = kind_.data();
     unsigned long long* counters = counters_.data();
@@ -277,6 +283,8 @@ class CudaBackend final : public DeviceBackend {
       const GeometryAt g = geometry_at(c, i, d0, grad_w, lap_w);
       shift_dir[i] = g.shift_direction;
       lap_esum[i] = g.lap_esum;
+      near_a[i] = g.near.a;
+      near_b[i] = g.near.b;
       if (kind[i] == Kind::Dummy) return;
       if (!g.B_ok) atomicAdd(&counters[kSingularB], 1ull);
       if (!g.Bhat_ok) atomicAdd(&counters[kSingularBhat], 1ull);
@@ -335,11 +343,12 @@ class CudaBackend final : public DeviceBackend {
     const real* p = p_.data();
     const real* rho = rho_.data();
     const Vec2* G = G_.data();
+    const Mat2* gradV = gradV_.data();
     const Vec2* lapV = lapV_.data();
     const Vec2* v_start = (from == StageStart::StepStart ? v_n_ : v_s_).data();
     Vec2* v = v_.data();
     real* rc = rc_.data();
-    each(0, n_, [=] __device__(std::size_t i) { rhie_chow_and_momentum_at(c, i, p, rho, G, lapV, v_start, s, rc, v); });
+    each(0, n_, [=] __device__(std::size_t i) { rhie_chow_and_momentum_at(c, i, p, rho, G, gradV, lapV, v_start, s, rc, v); });
   }
 
   void derivatives_and_continuity(StageStart from, const StageParams& s) override {
@@ -464,9 +473,30 @@ class CudaBackend final : public DeviceBackend {
     Vec2* v = v_.data();
     real* p = p_.data();
     real* rho = rho_.data();
+    const std::uint32_t* near_a = near_a_.data();
+    const std::uint32_t* near_b = near_b_.data();
+    const Vec2* normal = normal_.data();
+    const real range = d0_;
     each(nb_, n_, [=] __device__(std::size_t i) {
-      shift_particle(dir[i], scale, gradV[i], G[i], domain, c_sound, x[i], v[i], p[i], rho[i]);
+      shift_particle(dir[i], scale, gradV[i], G[i], gather_surfaces(near_a[i], near_b[i], x, normal, v), range, domain,
+                     c_sound, x[i], v[i], p[i], rho[i]);
     });
+  }
+
+  void guard_surfaces(real keep, SolverCounters& cnt) override {
+    const std::uint32_t* near_a = near_a_.data();
+    const std::uint32_t* near_b = near_b_.data();
+    const Vec2* normal = normal_.data();
+    const Domain domain = grid_.domain;
+    Vec2* x = x_.data();
+    Vec2* v = v_.data();
+    unsigned long long* counters = counters_.data();
+    each(nb_, n_, [=] __device__(std::size_t i) {
+      const GuardOutcome o = surface_guard_at(i, near_a, near_b, x, normal, v, keep, domain);
+      if (o == GuardOutcome::Pushed) atomicAdd(&counters[kSurfacePushed], 1ull);
+      if (o == GuardOutcome::Gap) atomicAdd(&counters[kGapSqueezed], 1ull);
+    });
+    collect_counters(cnt);
   }
 
   std::int64_t unhealthy_id(const HealthLimits& lim) override {
@@ -502,6 +532,7 @@ class CudaBackend final : public DeviceBackend {
     c.x = x_.data();
     c.vol = vol_.data();
     c.kind = kind_.data();
+    c.group = group_.data();
     c.fatehi_manzari = fatehi_manzari_;
     c.grad_w = grad_w_.data();
     c.lap_w = lap_w_.data();
@@ -531,6 +562,8 @@ class CudaBackend final : public DeviceBackend {
     cnt.wall_pressure_kept += static_cast<std::int64_t>(h[kWallKept]);
     cnt.wall_pressure_extrapolated += static_cast<std::int64_t>(h[kWallExtrapolated]);
     cnt.normal_fallback += static_cast<std::int64_t>(h[kNormalFallback]);
+    cnt.surface_pushed += static_cast<std::int64_t>(h[kSurfacePushed]);
+    cnt.gap_squeezed += static_cast<std::int64_t>(h[kGapSqueezed]);
     zero_counters();
   }
 
@@ -553,7 +586,7 @@ class CudaBackend final : public DeviceBackend {
   DArray<Vec2> v_n_, v_s_, lapV_, G_, shift_dir_, lap_esum_, grad_w_;
   DArray<Mat2> gradV_, gradV_n_;
   DArray<real> lap_w_;
-  DArray<std::uint32_t> count_, j_, cell_of_, sorted_, keys_, cell_start_;
+  DArray<std::uint32_t> count_, j_, cell_of_, sorted_, keys_, cell_start_, near_a_, near_b_;
   DArray<std::size_t> order_;
   DArray<unsigned char> scratch_bytes_;
   DArray<unsigned long long> counters_;

@@ -197,6 +197,8 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   guards.set("wall_pressure_kept", cnt.wall_pressure_kept);
   guards.set("wall_pressure_extrapolated", cnt.wall_pressure_extrapolated);
   guards.set("normal_fallback", cnt.normal_fallback);
+  guards.set("surface_pushed", cnt.surface_pushed);
+  guards.set("gap_squeezed", cnt.gap_squeezed);
   summary.set("guard_events", guards);
   for (const auto& p : out.probes())
     if (auto e = p->last_error()) summary.set("probe_error_" + p->spec().name, *e);
@@ -207,9 +209,10 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   rep.say(fmt::format("{}: t = {:.6g} s after {} steps in {:.2f} s ({:.3g} particle-steps/s on {} threads)", status,
                       solver.time(), solver.step_count(), wall, wall > 0 ? particle_steps / wall : 0.0,
                       omp_get_max_threads()));
-  rep.say(fmt::format("guard events: singular B {}, singular Bhat at fluid particles {}, wall pressure kept {}, extrapolated at corners {}, normal fallback {}",
+  rep.say(fmt::format("guard events: singular B {}, singular Bhat at fluid particles {}, wall pressure kept {}, "
+                      "extrapolated at corners {}, normal fallback {}, surface guard {} (closing gaps {})",
                       cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.wall_pressure_extrapolated,
-                      cnt.normal_fallback));
+                      cnt.normal_fallback, cnt.surface_pushed, cnt.gap_squeezed));
   if (particle_error)
     rep.say(fmt::format("L2 error of the fluid particles' vx against the exact solution: {:.4f} % of the peak speed",
                         100 * *particle_error));

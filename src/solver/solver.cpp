@@ -69,6 +69,7 @@ StageParams Solver::stage_params(real dt) const {
   s.rho0 = prm_.rho0;
   s.c = prm_.c;
   s.p0 = prm_.p0;
+  s.kappa = prm_.odd_even_damping * prm_.c * prm_.h;  // kappa = alpha c h (method-notes)
   s.single_layer = prm_.single_layer;
   return s;
 }
@@ -120,6 +121,7 @@ SweepContext Solver::sweep_context() const {
   c.x = P_.x.data();
   c.vol = vol_.data();
   c.kind = P_.kind.data();
+  c.group = P_.group.data();
   c.fatehi_manzari = prm_.fatehi_manzari;
   c.grad_w = pair_grad_w_.data();
   c.lap_w = pair_lap_w_.data();
@@ -148,6 +150,8 @@ void Solver::geometry_sweep() {
   rbar_.resize(n);
   shift_dir_.resize(n);
   lap_esum_.resize(n);
+  near_a_.resize(n);
+  near_b_.resize(n);
   pair_grad_w_.resize(nl_.pair_count());
   pair_lap_w_.resize(nl_.pair_count());
   const SweepContext c = sweep_context();
@@ -163,6 +167,8 @@ void Solver::geometry_sweep() {
     rbar_[i] = g.rbar;
     shift_dir_[i] = g.shift_direction;
     lap_esum_[i] = g.lap_esum;
+    near_a_[i] = g.near.a;
+    near_b_[i] = g.near.b;
     if (P_.kind[i] == Kind::Dummy) continue;
     bad_B += g.B_ok ? 0 : 1;
     bad_Bhat += g.Bhat_ok ? 0 : 1;
@@ -214,7 +220,7 @@ void Solver::rhie_chow_and_momentum(StageStart from, const StageParams& sp) {
   const Vec2* v_start = (from == StageStart::StepStart ? v_n_ : v_s_).data();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i)
-    rhie_chow_and_momentum_at(c, i, P_.p.data(), P_.rho.data(), G_.data(), lapV_.data(), v_start, sp, rc_.data(),
+    rhie_chow_and_momentum_at(c, i, P_.p.data(), P_.rho.data(), G_.data(), gradV_.data(), lapV_.data(), v_start, sp, rc_.data(),
                               P_.v.data());
 }
 
@@ -401,6 +407,7 @@ std::optional<Failure> Solver::step(real dt_cap) {
     shift_particles(dt, std::sqrt(vmax2));
   }
   PhaseTimer timer(times_.integration);
+  guard_surfaces();
   return check_health();
 }
 
@@ -445,7 +452,26 @@ void Solver::shift_particles(real dt, real vmax) {
   if (!(scale > 0)) return;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = nb; i < n; ++i)
-    shift_particle(shift_dir_[i], scale, gradV_[i], G_[i], domain_, prm_.c, P_.x[i], P_.v[i], P_.p[i], P_.rho[i]);
+    shift_particle(shift_dir_[i], scale, gradV_[i], G_[i],
+                   gather_surfaces(near_a_[i], near_b_[i], P_.x.data(), P_.normal.data(), P_.v.data()), prm_.d0,
+                   domain_, prm_.c, P_.x[i], P_.v[i], P_.p[i], P_.rho[i]);
+}
+
+void Solver::guard_surfaces() {
+  const real keep = prm_.surface_guard * prm_.d0;
+  if (!(keep > 0)) return;
+  if (dev_) return dev_->guard_surfaces(keep, counters_);
+  const std::size_t n = P_.size(), nb = P_.n_boundary;
+  std::int64_t pushed = 0, gap = 0;
+#pragma omp parallel for schedule(static) reduction(+ : pushed, gap)
+  for (std::size_t i = nb; i < n; ++i) {
+    const GuardOutcome o =
+        surface_guard_at(i, near_a_.data(), near_b_.data(), P_.x.data(), P_.normal.data(), P_.v.data(), keep, domain_);
+    pushed += o == GuardOutcome::Pushed ? 1 : 0;
+    gap += o == GuardOutcome::Gap ? 1 : 0;
+  }
+  counters_.surface_pushed += pushed;
+  counters_.gap_squeezed += gap;
 }
 
 void Solver::reorder_fluid() {

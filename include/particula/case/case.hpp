@@ -97,6 +97,8 @@ struct Case {
   NormalModel normals = NormalModel::Analytic;  // P.18 is selectable; see docs/method-notes.md
   real rhie_chow_factor = 1;
   real shifting_beta = 0.01;
+  real odd_even_damping = 0.005;
+  real surface_guard = 0.25;
   int wall_pressure_sweeps = 1;
 
   // [initial]

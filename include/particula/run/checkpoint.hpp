@@ -28,7 +28,7 @@
 namespace particula {
 
 /// Bump when the layout or any field list below changes; older files are then refused.
-inline constexpr std::uint32_t kCheckpointVersion = 3;
+inline constexpr std::uint32_t kCheckpointVersion = 4;
 
 /// When an output stream ("bodies", "snapshots", "probe:<name>") was last written on its
 /// regular schedule. A resumed run drops rows after this time (the extra final-state rows of an
@@ -82,7 +82,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file);
 
 inline constexpr std::size_t kParticlesFields = 15;  // n_boundary + 14 arrays
 inline constexpr std::size_t kRigidGroupFields = 23;
-inline constexpr std::size_t kSolverCountersFields = 5;
+inline constexpr std::size_t kSolverCountersFields = 7;
 
 template <class Ar, class P>
 void particles_fields(Ar& ar, P& p) {
@@ -139,6 +139,8 @@ void solver_counters_fields(Ar& ar, C& c) {
   ar(c.wall_pressure_kept);
   ar(c.wall_pressure_extrapolated);
   ar(c.normal_fallback);
+  ar(c.surface_pushed);
+  ar(c.gap_squeezed);
 }
 
 namespace checkpoint_detail {

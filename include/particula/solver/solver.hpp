@@ -49,7 +49,9 @@ struct PhysicsParams {
   bool single_layer = true;    // false: dummy-particle boundary (baseline)
   bool kernel_normals = true;  // false: analytic normals
   real rhie_chow_factor = 1;
+  real odd_even_damping = 0.005;  // alpha of the velocity odd-even damping, kappa = alpha c h
   real shifting_beta = 0.01;
+  real surface_guard = 0.25;  // keep-out distance of fluid from surfaces, in d0 (0: off)
   int wall_pressure_sweeps = 1;
   real rho_min_ratio = 0.5, rho_max_ratio = 2.0;
   int reorder_interval = 50;  // steps between cell reorderings of the fluid block
@@ -67,6 +69,8 @@ struct SolverCounters {
   std::int64_t wall_pressure_kept = 0;  // P.20 denominator vanished -> previous P kept
   std::int64_t wall_pressure_extrapolated = 0;  // P.20 ill-conditioned (sharp corner) -> extrapolated
   std::int64_t normal_fallback = 0;     // P.18 sum vanished -> analytic normal used
+  std::int64_t surface_pushed = 0;      // fluid particle put back to the keep-out distance of a surface
+  std::int64_t gap_squeezed = 0;        // fluid particle centred in a gap narrower than twice that
 };
 
 /// Wall-clock seconds spent in each phase of the time step, summed over the steps taken (the
@@ -170,6 +174,8 @@ class Solver {
   void body_stage(real dt, real t_stage_end, const std::vector<Vec2>& v0, const std::vector<real>& omega0);
   void body_update(real dt, real t_new);
   void shift_particles(real dt, real vmax);
+  /// The surface guard (boundary/surface_guard.hpp) on every fluid particle.
+  void guard_surfaces();
   GroupMotion group_motion(const RigidGroup& g) const;
   void reorder_fluid();
   std::optional<Failure> check_health() const;
@@ -201,6 +207,7 @@ class Solver {
   std::vector<Mat2> B_, Bhat_, gradV_, gradV_n_;
   std::vector<Vec2> lapV_, G_, v_n_, v_s_, shift_dir_, lap_esum_;
   // per-pair weights of the geometry sweep (solver/sweeps.hpp)
+  std::vector<std::uint32_t> near_a_, near_b_;  // nearest surface particles (surface guard)
   std::vector<Vec2> pair_grad_w_;
   std::vector<real> pair_lap_w_;
   // GPU backend: the device holds the particle state; the host copy is refreshed on demand

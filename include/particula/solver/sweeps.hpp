@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "particula/boundary/surface_guard.hpp"
 #include "particula/boundary/wall_pressure.hpp"
 #include "particula/core/types.hpp"
 #include "particula/fluid/fluid.hpp"
@@ -61,6 +62,7 @@ struct SweepContext {
   const Vec2* x = nullptr;
   const real* vol = nullptr;
   const Kind* kind = nullptr;
+  const std::int32_t* group = nullptr;  // rigid group of a boundary particle (nearest surfaces)
   bool fatehi_manzari = true;  // false: Morris Laplacian (baseline)
   // written by the geometry sweep
   const Vec2* grad_w = nullptr;    // per pair: w_j B_i gradW_ij (renormalized gradient weight, P.7)
@@ -77,6 +79,7 @@ struct GeometryAt {
   Vec2 normal_sum;       // sum_j w_j gradW_ij, the P.18 normal before normalization
   Vec2 shift_direction;  // sum_j (rbar^2 / r^2) e_ij of P.33, before the factor beta V_max dt
   Vec2 lap_esum;         // sum_j (Laplacian weight) e_ij
+  NearestSurfaces near;  // fluid particles: the nearest surface particles (surface guard)
   bool B_ok = true;
   bool Bhat_ok = true;  // false only for a fluid particle's singular system: at boundary particles
                         // Bhat = k I is the designed guard (method-notes), not an event
@@ -123,6 +126,7 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
     laplacian_moments_pair(mom, w, g.r, g.F * g.r, inv_r * g.rij);
     out.normal_sum += (w * g.F) * g.rij;
     rsum += g.r;
+    if (j < c.nb && i >= c.nb && c.kind[j] == Kind::Boundary) offer_surface(out.near, j, c.group[j], g.r * g.r);
     grad_w[k] = g.rij;
     lap_w[k] = g.r;
   }
@@ -239,6 +243,7 @@ struct StageParams {
   real nu = 0;
   Vec2 f;              // body force, plus gravity when it is kept in the fluid
   real rho0 = 1000, c = 0, p0 = 0;
+  real kappa = 0;      // coefficient of the velocity odd-even damping (m^2/s), see odd_even_velocity_at
   bool single_layer = true;
 };
 
@@ -278,15 +283,27 @@ PARTICULA_HD real end_of_step_update(std::size_t i, std::size_t nb, Kind kind, c
 
 /// Particle shifting of a fluid particle (P.33-P.36): displacement dr = beta V_max dt times the
 /// direction of the geometry sweep, with the first-order Taylor corrections of V, P and rho
-/// (using the step's mean velocity gradient and the new <grad P>/rho).
+/// (using the step's mean velocity gradient and the new <grad P>/rho). The shift has no
+/// component towards a surface closer than `surface_range` (surface guard).
 PARTICULA_HD void shift_particle(Vec2 direction, real scale, const Mat2& grad_v, Vec2 grad_p_over_rho,
-                                 const Domain& domain, real c, Vec2& x, Vec2& v, real& p, real& rho) {
-  const Vec2 dr = scale * direction;             // P.33
+                                 const NearSurfaces& surfaces, real surface_range, const Domain& domain, real c,
+                                 Vec2& x, Vec2& v, real& p, real& rho) {
+  const Vec2 dr = limit_shift_at_surfaces(scale * direction, surfaces, surface_range, domain, x);  // P.33
   x = domain.wrap(x + dr);
   v += dr * grad_v;                              // P.34
   const real dp = rho * dot(dr, grad_p_over_rho);  // P.35: rho dr . <grad P / rho>
   p += dp;
   rho += dp / (c * c);                           // P.36
+}
+
+/// The surface guard of fluid particle i (boundary/surface_guard.hpp) against its nearest
+/// surface particles near_a[i], near_b[i] of this step's geometry sweep, whose positions,
+/// normals and velocities are those of the end of the step. Race-free in one loop: it reads
+/// boundary particles and writes only fluid particle i.
+PARTICULA_HD GuardOutcome surface_guard_at(std::size_t i, const std::uint32_t* near_a, const std::uint32_t* near_b,
+                                           Vec2* x, const Vec2* normal, Vec2* v, real keep, const Domain& domain) {
+  const NearSurfaces ns = gather_surfaces(near_a[i], near_b[i], x, normal, v);
+  return guard_surfaces(ns, keep, domain, x[i], v[i]);
 }
 
 /// Limits of a healthy state (exit 3 otherwise).
@@ -322,13 +339,31 @@ PARTICULA_HD void store_velocity_derivatives(const SweepContext& c, std::size_t 
   div_v[i] = trace(L);
 }
 
+/// The velocity counterpart of the Rhie-Chow bracket: <lap V>_i (compact, P.10) minus
+/// <div <grad V>>_i (the first-derivative scheme applied twice, a wide stencil). Both are
+/// consistent Laplacians: the difference is exactly zero for linear fields and of the order of
+/// the gradient's truncation error on smooth ones, but the compact Laplacian sees an odd-even
+/// (checkerboard) velocity mode that the wide one does not. kappa times this damps exactly that
+/// mode, which nothing else controls at high cell Reynolds numbers c d0 / nu
+/// (docs/method-notes.md, "Odd-even velocity damping").
+PARTICULA_HD Vec2 odd_even_velocity_at(const SweepContext& c, std::size_t i, const Mat2* grad_v, Vec2 lap_v) {
+  const Mat2 Li = grad_v[i];
+  Vec2 wide;
+  const std::size_t b = c.first_pair(i), st = c.stride;
+  const std::uint32_t np = c.pair_count(i);
+  for (std::size_t q = 0, k = b; q < np; ++q, k += st) wide += c.grad_w[k] * (grad_v[c.j[k]] - Li);
+  return lap_v - wide;
+}
+
 /// Rhie-Chow bracket of the current P at particle i, then (fluid) the momentum stage from
-/// v_start. Race-free in one loop: it reads P, rho, G of the neighbours and writes only V_i.
+/// v_start. Race-free in one loop: it reads P, rho, G, grad V of the neighbours and writes only V_i.
 PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContext& c, std::size_t i, const real* p, const real* rho,
-                                            const Vec2* G, const Vec2* lap_v, const Vec2* v_start,
-                                            const StageParams& s, real* rc, Vec2* v) {
+                                            const Vec2* G, const Mat2* grad_v, const Vec2* lap_v,
+                                            const Vec2* v_start, const StageParams& s, real* rc, Vec2* v) {
   rc[i] = rhie_chow_at(c, i, p, rho, G);
-  if (i >= c.nb) v[i] = momentum_stage(v_start[i], G[i], lap_v[i], s);
+  if (i < c.nb) return;
+  v[i] = momentum_stage(v_start[i], G[i], lap_v[i], s);
+  if (s.kappa > 0) v[i] += (s.dt * s.kappa) * odd_even_velocity_at(c, i, grad_v, lap_v[i]);
 }
 
 /// Velocity derivatives of the new V at particle i, then its continuity stage from rho_start.

@@ -1,0 +1,182 @@
+// The surface guard (boundary/surface_guard.hpp): fluid particles never cross a surface, a
+// closing gap carries its particle, shifting never moves a particle into a close surface; and
+// the odd-even velocity damping (sweeps.hpp odd_even_velocity_at): zero on linear fields,
+// dissipative on a checkerboard. The long hydrostatic box that the damping makes stable is in
+// tests/test_flows.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "case_builders.hpp"
+#include "particula/boundary/surface_guard.hpp"
+#include "particula/scene/scene.hpp"
+#include "particula/solver/solver.hpp"
+
+using namespace particula;
+
+namespace {
+
+const Domain kOpen{{-1, -1}, {1, 1}, false, false};
+
+NearSurfaces one_surface(Vec2 x, Vec2 n, Vec2 v = {}) {
+  NearSurfaces ns;
+  ns.s[ns.count++] = SurfaceTangent{x, n, v};
+  return ns;
+}
+
+}  // namespace
+
+TEST(SurfaceGuard, NearestSlotsKeepTwoDifferentGroups) {
+  NearestSurfaces s;
+  offer_surface(s, 7, 2, 0.04);  // group 2 at distance 0.2
+  offer_surface(s, 8, 2, 0.01);  // group 2, nearer: slot a, slot b stays empty
+  EXPECT_EQ(s.a, 8u);
+  EXPECT_EQ(s.b, kNoSurface);
+  offer_surface(s, 3, 5, 0.09);  // another group, farther: slot b
+  EXPECT_EQ(s.b, 3u);
+  offer_surface(s, 4, 5, 0.0025);  // group 5 becomes the nearest: group 2's best moves to b
+  EXPECT_EQ(s.a, 4u);
+  EXPECT_EQ(s.b, 8u);
+  offer_surface(s, 9, 5, 0.001);  // same group as a: replaces a, b untouched
+  EXPECT_EQ(s.a, 9u);
+  EXPECT_EQ(s.b, 8u);
+}
+
+TEST(SurfaceGuard, ParticleBehindASurfaceIsPutBackAndStopsMovingIn) {
+  const real keep = 0.25;
+  // Floor at y = 0 moving right at 1; the particle has crossed it and moves down and right.
+  const NearSurfaces ns = one_surface({0, 0}, {0, 1}, {1, 0});
+  Vec2 x{0.3, -0.1}, v{2, -3};
+  EXPECT_EQ(guard_surfaces(ns, keep, kOpen, x, v), GuardOutcome::Pushed);
+  EXPECT_NEAR(x.y, keep, 1e-15);
+  EXPECT_NEAR(x.x, 0.3, 1e-15);
+  EXPECT_NEAR(v.y, 0, 1e-15);  // no relative velocity into the surface
+  EXPECT_NEAR(v.x, 2, 1e-15);  // tangential velocity untouched
+  // Moving away from the surface: the position is corrected, the velocity kept.
+  x = {0, 0.1};
+  v = {0, 0.5};
+  EXPECT_EQ(guard_surfaces(ns, keep, kOpen, x, v), GuardOutcome::Pushed);
+  EXPECT_NEAR(v.y, 0.5, 1e-15);
+  // Farther than the keep-out distance: nothing.
+  x = {0, 0.26};
+  v = {0, -1};
+  EXPECT_EQ(guard_surfaces(ns, keep, kOpen, x, v), GuardOutcome::None);
+  EXPECT_EQ(v.y, -1);
+}
+
+TEST(SurfaceGuard, ClosingGapCarriesItsParticle) {
+  const real keep = 0.25;
+  // Two plates 0.3 apart (narrower than 2 keep) closing at 1 each.
+  NearSurfaces ns = one_surface({0, 0}, {0, 1}, {0, 1});
+  ns.s[ns.count++] = SurfaceTangent{{0.1, 0.3}, {0, -1}, {0, -1}};
+  Vec2 x{0.05, 0.05}, v{0.7, -4};
+  EXPECT_EQ(guard_surfaces(ns, keep, kOpen, x, v), GuardOutcome::Gap);
+  EXPECT_NEAR(x.y, 0.15, 1e-15);  // midway
+  EXPECT_NEAR(v.y, 0, 1e-15);     // the mean of the two plates' normal velocities
+  EXPECT_NEAR(v.x, 0.7, 1e-15);   // free to be squeezed out along the gap
+  // A corner (perpendicular walls) is not a gap: both are enforced.
+  NearSurfaces corner = one_surface({0, 0}, {0, 1});
+  corner.s[corner.count++] = SurfaceTangent{{0, 0}, {1, 0}, {}};
+  x = {0.1, -0.05};
+  v = {-1, -1};
+  EXPECT_EQ(guard_surfaces(corner, keep, kOpen, x, v), GuardOutcome::Pushed);
+  EXPECT_NEAR(x.x, keep, 1e-15);
+  EXPECT_NEAR(x.y, keep, 1e-15);
+  EXPECT_NEAR(norm(v), 0, 1e-15);
+}
+
+TEST(SurfaceGuard, ShiftingNeverMovesIntoACloseSurface) {
+  const NearSurfaces ns = one_surface({0, 0}, {0, 1});
+  const Vec2 dr{0.01, -0.02};
+  const Vec2 near = limit_shift_at_surfaces(dr, ns, 1.0, kOpen, {0, 0.5});
+  EXPECT_EQ(near.x, 0.01);
+  EXPECT_EQ(near.y, 0);
+  const Vec2 far = limit_shift_at_surfaces(dr, ns, 1.0, kOpen, {0, 1.5});
+  EXPECT_EQ(far.y, -0.02);
+  const Vec2 away = limit_shift_at_surfaces(Vec2{0, 0.02}, ns, 1.0, kOpen, {0, 0.5});
+  EXPECT_EQ(away.y, 0.02);
+}
+
+namespace {
+
+struct Box {
+  Scene scene;
+  std::unique_ptr<Solver> solver;
+};
+
+/// A 1 x 0.8 box at d0 = 0.04 with a 20 % random perturbation of the fluid lattice.
+Box make_box() {
+  Case c = cases::closed_box(1.0, 0.8, 0.04);
+  c.perturbation = 0.2;
+  c.seed = 11;
+  Box b{build_scene(c), nullptr};
+  b.solver = std::make_unique<Solver>(b.scene.params, b.scene.domain, b.scene.particles, b.scene.groups);
+  return b;
+}
+
+bool interior(const Solver& s, std::size_t i) {
+  const Vec2 x = s.particles().x[i];
+  const Domain& d = s.domain();
+  const real dist = std::min({x.x - d.lo.x, d.hi.x - x.x, x.y - d.lo.y, d.hi.y - x.y});
+  return s.particles().is_fluid(i) && dist > 2 * s.params().h;
+}
+
+}  // namespace
+
+TEST(OddEvenDamping, ExactOnLinearAndSmallOnQuadraticFields) {
+  auto b = make_box();
+  Solver& s = *b.solver;
+  const auto& P = s.particles();
+  const SweepContext c = s.sweep_context();
+  // Linear field: both Laplacians are exactly zero (renormalized gradient exact for linear fields).
+  // Quadratic field: the compact Laplacian is exact, the wide one (gradient applied twice) has
+  // the gradient's truncation error, a few per cent of the Laplacian on this 20 % perturbed lattice.
+  for (const real q : {0.0, 1.0}) {
+    std::vector<Vec2> v(P.size());
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      const Vec2 x = P.x[i];
+      v[i] = {0.3 + 1.2 * x.x - 0.7 * x.y + q * (0.9 * x.x * x.x - 0.4 * x.x * x.y + 0.6 * x.y * x.y),
+              -0.2 + 0.5 * x.x + 0.8 * x.y + q * (-0.3 * x.x * x.x + 1.1 * x.x * x.y - 0.5 * x.y * x.y)};
+    }
+    s.compute_velocity_derivatives(v);
+    const Vec2 lap_exact{q * (2 * 0.9 + 2 * 0.6), q * (-2 * 0.3 - 2 * 0.5)};
+    real worst = 0;
+    int n = 0;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      if (!interior(s, i)) continue;
+      worst = std::max(worst, norm(odd_even_velocity_at(c, i, s.grad_v().data(), s.lap_v()[i])));
+      ++n;
+    }
+    ASSERT_GT(n, 50);
+    std::printf("odd-even term on a %s field: worst %.3g (|lap V| = %.3g)\n", q == 0 ? "linear" : "quadratic", worst,
+                norm(lap_exact));
+    if (q == 0) EXPECT_LT(worst, 1e-9);
+    else EXPECT_LT(worst, 0.1 * norm(lap_exact));
+  }
+}
+
+TEST(OddEvenDamping, DampsACheckerboardMode) {
+  auto b = make_box();
+  Solver& s = *b.solver;
+  const auto& P = s.particles();
+  const real d0 = s.params().d0;
+  // Columns moving alternately up and down (the mode seen growing under a top wall).
+  std::vector<Vec2> v(P.size());
+  for (std::size_t i = P.n_boundary; i < P.size(); ++i) {
+    const long col = std::lround(P.x[i].x / d0);
+    v[i] = {0, col % 2 == 0 ? 1.0 : -1.0};
+  }
+  s.compute_velocity_derivatives(v);
+  const SweepContext c = s.sweep_context();
+  real power = 0, scale = 0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    if (!interior(s, i)) continue;
+    const Vec2 d = odd_even_velocity_at(c, i, s.grad_v().data(), s.lap_v()[i]);
+    power += dot(d, v[i]);
+    scale += norm2(v[i]);
+  }
+  // d . v < 0: the term removes kinetic energy from the mode, at a rate of order 1/d0^2.
+  EXPECT_LT(power / scale, -1.0 / (d0 * d0));
+}
