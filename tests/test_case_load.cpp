@@ -144,13 +144,13 @@ normals = "analytic"
 flow = "taylor_green"
 
 [[wall]]
-from = [1e-3, 0]
-to = [0, 0]
+from = [0, 0]
+to = [1e-3, 0]
 
 [[wall]]
 name = "lid"
-from = [0, 1e-3]
-to = [1e-3, 1e-3]
+from = [1e-3, 1e-3]
+to = [0, 1e-3]
 velocity = [1e-3, 0]
 
 [[probe]]
@@ -185,7 +185,7 @@ TEST(CaseLoad, DynamicViscosityBecomesKinematic) {
 
 TEST(CaseLoad, WallEndpointsWithinToleranceOfTheDomain) {
   // 1e-7 * d0 outside the box is inside the tolerance d0 * 1e-6.
-  const std::string text = kMinimal + "[[wall]]\nfrom = [1.0000000000025e-3, 0]\nto = [0, 0]\n";
+  const std::string text = kMinimal + "[[wall]]\nfrom = [0, 0]\nto = [1.0000000000025e-3, 0]\n";
   EXPECT_NO_THROW(load_case_text(text, kFile));
 }
 

@@ -53,13 +53,13 @@ snapshot_interval = 0.1
 rho_min_ratio = 0.5
 
 [[wall]]
-from = [1e-3, 0.0]
-to = [0.0, 0.0]
+from = [0.0, 0.0]
+to = [1e-3, 0.0]
 
 [[wall]]
 name = "lid"
-from = [0.0, 2e-3]
-to = [1e-3, 2e-3]
+from = [1e-3, 2e-3]
+to = [0.0, 2e-3]
 velocity = [1e-3, 0]
 
 [[probe]]

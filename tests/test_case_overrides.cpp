@@ -32,12 +32,12 @@ end = 1.0
 interval = 0.01
 
 [[wall]]
-from = [1e-3, 0.0]
-to = [0.0, 0.0]
+from = [0.0, 0.0]
+to = [1e-3, 0.0]
 
 [[wall]]
-from = [0.0, 1e-3]
-to = [1e-3, 1e-3]
+from = [1e-3, 1e-3]
+to = [0.0, 1e-3]
 
 [[probe]]
 name = "mid"

@@ -1,5 +1,7 @@
 // Consistency checks between keys, run after every key passed its own type and range check.
 // To add one, write a function below and append it to kChecks.
+// Walls: on a domain edge with the fluid inside, not on a periodic boundary, no two on one
+// stretch, joined head to tail (no gaps below d0/2, at most two per point), clear of bodies.
 // Bodies: keys used by their shape or motion only, valid polygons, density of free bodies,
 // schedules, size against d0, inside the domain, no overlap at t = 0.
 #include <fmt/format.h>
@@ -545,14 +547,325 @@ void check_body_overlap(const Case& c, const LoadContext& ctx) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Walls among themselves and against bodies. The fluid lies on the left of a wall walking from
+// `from` to `to` (its normal is the left normal); the scene joins two walls into a corner where
+// one's `to` is the other's `from`, and leaves out wall particles within d0/2 of a body. A case
+// that breaks these rules loads but fails at the first step (NaN), so it is stopped here.
+
+std::string wall_key(std::size_t k, std::string_view leaf) { return fmt::format("wall[{}].{}", k, leaf); }
+
+/// "wall 'bottom' (wall[0])".
+std::string wall_text(const Case& c, std::size_t k) {
+  return fmt::format("wall '{}' (wall[{}])", c.walls[k].name, k);
+}
+
+Vec2 unit(Vec2 v) { return v / norm(v); }
+
+/// Normal on the fluid side of a wall.
+Vec2 left_normal(const WallSpec& w) {
+  const Vec2 t = unit(w.to - w.from);
+  return {-t.y, t.x};
+}
+
+real component(Vec2 v, int axis) { return axis == 0 ? v.x : v.y; }
+
+/// Distance from p to the segment [a, b].
+real segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 ab = b - a;
+  const real s = std::clamp(dot(p - a, ab) / norm2(ab), 0.0, 1.0);
+  return norm(p - (a + s * ab));
+}
+
+/// b - a, to the nearest periodic image along periodic axes (as Domain::separation, which the
+/// scene uses to decide whether two wall ends are one point).
+Vec2 separation(const Case& c, Vec2 a, Vec2 b) {
+  Vec2 d = b - a;
+  const Vec2 span = c.domain_max - c.domain_min;
+  if (c.periodic_x) d.x -= span.x * std::nearbyint(d.x / span.x);
+  if (c.periodic_y) d.y -= span.y * std::nearbyint(d.y / span.y);
+  return d;
+}
+
+/// An edge line of the domain box: x = value (axis 0) or y = value (axis 1).
+struct DomainEdge {
+  int axis = 0;
+  real value = 0;
+  bool lower = true;  // domain.min side
+
+  char name() const { return axis == 0 ? 'x' : 'y'; }
+  /// Unit normal pointing into the domain.
+  Vec2 inward() const {
+    const real s = lower ? 1 : -1;
+    return axis == 0 ? Vec2{s, 0} : Vec2{0, s};
+  }
+};
+
+/// The domain edge a wall lies on (both ends on its line, within tol), if any.
+std::optional<DomainEdge> edge_of(const Case& c, const WallSpec& w, real tol) {
+  for (int axis = 0; axis < 2; ++axis)
+    for (const bool lower : {true, false}) {
+      const real v = component(lower ? c.domain_min : c.domain_max, axis);
+      if (std::fabs(component(w.from, axis) - v) <= tol && std::fabs(component(w.to, axis) - v) <= tol)
+        return DomainEdge{axis, v, lower};
+    }
+  return std::nullopt;
+}
+
+bool periodic_along(const Case& c, int axis) { return axis == 0 ? c.periodic_x : c.periodic_y; }
+
+/// A wall may not lie on the boundary of a periodic axis: the fluid wraps around there, so the
+/// fluid beyond the boundary (its periodic image) would stand on the wall's right side.
+void check_walls_off_periodic_edges(const Case& c, const LoadContext& ctx) {
+  for (std::size_t k = 0; k < c.walls.size(); ++k) {
+    const std::optional<DomainEdge> e = edge_of(c, c.walls[k], 1e-6 * c.d0);
+    if (!e || !periodic_along(c, e->axis)) continue;
+    throw ctx.error(
+        wall_key(k, "from"),
+        fmt::format("{} lies on the domain edge {} = {:.9g} m, but the domain is periodic along {}: "
+                    "the fluid wraps around that edge and would be on both sides of the wall; "
+                    "remove the wall or make domain.periodic false along {}",
+                    wall_text(c, k), e->name(), e->value, e->name(), e->name()));
+  }
+}
+
+/// A wall on an edge of the domain box must have the fluid (its left side) inside the box.
+void check_wall_orientation(const Case& c, const LoadContext& ctx) {
+  for (std::size_t k = 0; k < c.walls.size(); ++k) {
+    const std::optional<DomainEdge> e = edge_of(c, c.walls[k], 1e-6 * c.d0);
+    if (!e || dot(left_normal(c.walls[k]), e->inward()) > 0) continue;
+    throw ctx.error(
+        wall_key(k, "from"),
+        fmt::format("the fluid would be on the right of {} (it lies on the domain edge {} = {:.9g} "
+                    "m; the fluid lies on the left walking from `from` to `to`): swap from and to",
+                    wall_text(c, k), e->name(), e->value));
+  }
+}
+
+/// Two walls on one line sharing a stretch (a duplicated wall, or a wall repeated in parts) put
+/// two layers of wall particles on top of each other.
+void check_wall_overlap(const Case& c, const LoadContext& ctx) {
+  const real tol = 1e-6 * c.d0;
+  for (std::size_t j = 0; j < c.walls.size(); ++j) {
+    for (std::size_t i = 0; i < j; ++i) {
+      const WallSpec &a = c.walls[i], &b = c.walls[j];
+      const Vec2 u = unit(a.to - a.from);
+      if (std::fabs(cross(u, b.from - a.from)) > tol || std::fabs(cross(u, b.to - a.from)) > tol) continue;
+      const real s1 = dot(u, b.from - a.from), s2 = dot(u, b.to - a.from);
+      const real shared = std::min(norm(a.to - a.from), std::max(s1, s2)) - std::max(0.0, std::min(s1, s2));
+      if (shared <= tol) continue;  // collinear, meeting at most at an end point
+      const bool same = norm(b.from - a.from) <= tol && norm(b.to - a.to) <= tol;
+      const bool reversed = norm(b.from - a.to) <= tol && norm(b.to - a.from) <= tol;
+      const std::string what = same ? "duplicates" : reversed ? "duplicates (reversed)" : "overlaps";
+      throw ctx.error(
+          wall_key(j, "from"),
+          fmt::format("{} {} {}: they share {:.6g} m of the same line, which would put two layers "
+                      "of wall particles there; remove one or make them meet only at an end point",
+                      wall_text(c, j), what, wall_text(c, i), shared));
+    }
+  }
+}
+
+/// One end point of a wall.
+struct WallEnd {
+  std::size_t wall;
+  bool is_to;  // `to`, else `from`
+
+  Vec2 at(const Case& c) const { return is_to ? c.walls[wall].to : c.walls[wall].from; }
+  const char* leaf() const { return is_to ? "to" : "from"; }
+  const char* verb() const { return is_to ? "ends" : "starts"; }
+};
+
+/// Distance between two wall ends as the scene sees it (through periodic boundaries), or
+/// infinity for the two ends of one wall unless they face each other across a periodic
+/// boundary (a wall's own length is not a gap).
+real end_gap(const Case& c, WallEnd p, WallEnd q) {
+  const Vec2 direct = q.at(c) - p.at(c), wrapped = separation(c, p.at(c), q.at(c));
+  if (p.wall == q.wall && norm(direct) - norm(wrapped) <= 1e-6 * c.d0)
+    return std::numeric_limits<real>::infinity();
+  return norm(wrapped);
+}
+
+/// All wall ends, in case order (from, then to).
+std::vector<WallEnd> wall_ends(const Case& c) {
+  std::vector<WallEnd> ends;
+  for (std::size_t k = 0; k < c.walls.size(); ++k) ends.insert(ends.end(), {{k, false}, {k, true}});
+  return ends;
+}
+
+/// Ends closer than d0/2 must be one point: the scene joins only equal points, so a chain meant
+/// to be closed that is not has a hole the size of the gap (and two corners that overlap).
+void check_wall_gaps(const Case& c, const LoadContext& ctx) {
+  const std::vector<WallEnd> ends = wall_ends(c);
+  for (std::size_t q = 0; q < ends.size(); ++q)
+    for (std::size_t p = 0; p < q; ++p) {
+      const real gap = end_gap(c, ends[p], ends[q]);
+      if (gap <= 1e-6 * c.d0 || gap >= 0.5 * c.d0) continue;
+      const WallEnd &a = ends[p], &b = ends[q];
+      throw ctx.error(wall_key(b.wall, b.leaf()),
+                      fmt::format("{} {} at {}, a gap of {:.3g} m from where {} {} ({}): end points closer "
+                                  "than d0/2 = {:.6g} m must be the same point to join the walls; make them "
+                                  "equal, or at least d0/2 apart",
+                                  wall_text(c, b.wall), b.verb(), vec(b.at(c)), gap, wall_text(c, a.wall),
+                                  a.verb(), vec(a.at(c)), 0.5 * c.d0));
+    }
+}
+
+/// At most two walls meet at a point: the scene makes one corner of two walls.
+void check_wall_joints(const Case& c, const LoadContext& ctx) {
+  const std::vector<WallEnd> ends = wall_ends(c);
+  for (std::size_t q = 0; q < ends.size(); ++q) {
+    std::vector<std::string> names;  // the walls whose ends meet at ends[q], up to q
+    for (std::size_t p = 0; p <= q; ++p)
+      if (p == q || end_gap(c, ends[p], ends[q]) <= 1e-6 * c.d0) names.push_back(wall_text(c, ends[p].wall));
+    if (names.size() <= 2) continue;
+    throw ctx.error(wall_key(ends[q].wall, ends[q].leaf()),
+                    fmt::format("{} wall ends meet at {}: {}; at most two walls may share an end point (one "
+                                "ending where the other starts)",
+                                names.size(), vec(ends[q].at(c)), fmt::join(names, ", ")));
+  }
+}
+
+/// Two walls joined at an end point must run head to tail (one's `to` is the other's `from`):
+/// two that both start or both end there have the fluid on opposite sides of the chain.
+void check_wall_chains(const Case& c, const LoadContext& ctx) {
+  const std::vector<WallEnd> ends = wall_ends(c);
+  const real tol = 1e-6 * c.d0;
+  for (std::size_t q = 0; q < ends.size(); ++q)
+    for (std::size_t p = 0; p < q; ++p) {
+      const WallEnd &a = ends[p], &b = ends[q];
+      if (a.is_to != b.is_to || end_gap(c, a, b) > tol) continue;
+      // The one to turn round: not a wall on a domain edge (those are oriented already).
+      const std::size_t turn = edge_of(c, c.walls[b.wall], tol) ? a.wall : b.wall;
+      throw ctx.error(
+          wall_key(b.wall, b.leaf()),
+          fmt::format("{} and {} both {} at {}: they have opposite orientations (the fluid lies on "
+                      "the left walking from `from` to `to`), so the fluid would be on different "
+                      "sides of the chain; swap from and to of {} so that one ends where the other "
+                      "starts",
+                      wall_text(c, b.wall), wall_text(c, a.wall), b.is_to ? "end" : "start", vec(b.at(c)),
+                      wall_text(c, turn)));
+    }
+}
+
+/// A flat side of a body: from p to q, with its outward normal.
+struct FlatSide {
+  Vec2 p, q, out;
+};
+
+/// The flat sides of a body at t = 0 (a half_disc's, a polygon's edges); none for round shapes.
+std::vector<FlatSide> flat_sides(const Outline& o) {
+  const BodySpec& b = *o.body;
+  std::vector<FlatSide> sides;
+  const auto world = [&](Vec2 q) { return o.center + rotate(q, o.cs, o.sn); };
+  if (b.shape == BodyShape::HalfDisc)
+    sides.push_back({world({0, -b.radius}), world({0, b.radius}), rotate({-1, 0}, o.cs, o.sn)});
+  if (b.shape == BodyShape::Polygon) {
+    const real turn = twice_area(o.verts) > 0 ? 1 : -1;  // outward = right of each edge if counter-clockwise
+    for (std::size_t i = 0; i < o.verts.size(); ++i) {
+      const Vec2 p = o.verts[i], q = o.verts[(i + 1) % o.verts.size()], e = unit(q - p);
+      sides.push_back({p, q, turn * Vec2{e.y, -e.x}});
+    }
+  }
+  return sides;
+}
+
+/// Whether a fixed body stands on the wall [a, b] the way the scene builds it (place_on_walls
+/// leaves out the body's samples that face into a wall within d0/2, and makes the corners where
+/// its free side meets the wall into junctions): a flat side lies on the wall's line facing into
+/// the wall and shares a stretch with it, and no part of the body reaches past that line where
+/// the wall is. `samples` are points on the body's boundary.
+bool stands_on(const Outline& o, const std::vector<Vec2>& samples, Vec2 a, Vec2 b, real tol) {
+  if (o.body->motion != BodyMotion::Fixed) return false;
+  const Vec2 u = unit(b - a), n{-u.y, u.x};
+  const real L = norm(b - a);
+  constexpr real antiparallel = -0.999;  // as place_on_walls
+  const auto on_wall = [&](const FlatSide& s) {
+    const real s1 = dot(u, s.p - a), s2 = dot(u, s.q - a);
+    return std::fabs(dot(n, s.p - a)) <= tol && std::fabs(dot(n, s.q - a)) <= tol &&
+           dot(s.out, n) < antiparallel &&
+           std::min(L, std::max(s1, s2)) - std::max(0.0, std::min(s1, s2)) > tol;
+  };
+  const std::vector<FlatSide> sides = flat_sides(o);
+  if (std::none_of(sides.begin(), sides.end(), on_wall)) return false;
+  return std::none_of(samples.begin(), samples.end(), [&](Vec2 p) {
+    const real along = dot(u, p - a);
+    return dot(n, p - a) < -tol && along > tol && along < L - tol;
+  });
+}
+
+/// Gap between a body and the segment [a, b], <= 0 where they meet: exact for a circle, else the
+/// least distance of the boundary samples (at most half their spacing too large).
+real gap_to_wall(const Outline& o, const std::vector<Vec2>& samples, Vec2 a, Vec2 b) {
+  if (o.body->shape == BodyShape::Circle) return segment_distance(o.center, a, b) - o.body->radius;
+  if (o.contains(a, 0)) return 0;  // the wall lies inside (it would come near the boundary if it left)
+  real gap = std::numeric_limits<real>::infinity();
+  for (const Vec2 p : samples) gap = std::min(gap, segment_distance(p, a, b));
+  return gap;
+}
+
+/// Whether the segment [a, b] runs through the inside of a body (deeper than tol), tested at
+/// points `step` apart.
+bool cuts_through(const Outline& o, Vec2 a, Vec2 b, real step, real tol) {
+  const real n = std::min(1e6, std::ceil(norm(b - a) / step));
+  for (real i = 0; i <= n; ++i)
+    if (o.contains(a + (i / n) * (b - a), tol)) return true;
+  return false;
+}
+
+/// A wall that crosses a body or passes within d0/2 of it at t = 0, also across periodic
+/// boundaries, breaks the scene: the wall particles within d0/2 of the body are left out (a
+/// hole in the wall) and a body crossing the wall has fluid inside it. Only a fixed body may
+/// stand on a wall, with a flat side (stands_on).
+void check_walls_clear_of_bodies(const Case& c, const LoadContext& ctx) {
+  const real tol = 1e-6 * c.d0, reach = 0.5 * c.d0 * (1 - 1e-9);  // as the scene's near_body
+  const Vec2 span = c.domain_max - c.domain_min;
+  std::vector<Vec2> shifts;  // of the body; the wall is moved the other way
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      if ((i == 0 || c.periodic_x) && (j == 0 || c.periodic_y)) shifts.push_back({i * span.x, j * span.y});
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    const Outline o(c.bodies[k]);
+    std::vector<Vec2> samples;  // 0.01 d0 apart (at least 2000, at most 200000), made when needed
+    for (std::size_t w = 0; w < c.walls.size(); ++w)
+      for (const Vec2 shift : shifts) {
+        const Vec2 a = c.walls[w].from - shift, b = c.walls[w].to - shift;
+        if (segment_distance(o.center, a, b) >= o.bound + reach) continue;
+        if (samples.empty()) {
+          const real n = o.perimeter() / (0.01 * c.d0);
+          samples = o.boundary(static_cast<std::size_t>(n > 2000 ? std::min(n, 2e5) : 2000));  // NaN: 2000
+        }
+        const real gap = gap_to_wall(o, samples, a, b);
+        const bool across = shift.x != 0 || shift.y != 0;
+        if (gap >= reach || (!across && stands_on(o, samples, a, b, tol))) continue;
+        const std::string where = across ? " across the periodic boundary" : "";
+        if (cuts_through(o, a, b, 0.05 * c.d0, tol))
+          throw ctx.error(
+              place_key(c, k),
+              fmt::format("{} cuts through {} at t = 0{}: move the body clear of the wall (only a "
+                          "fixed body may stand on a wall, with a flat side on it)",
+                          wall_text(c, w), body_text(c.bodies[k]), where));
+        const std::string near = gap <= tol ? "touches" : fmt::format("passes {:.3g} m from", gap);
+        throw ctx.error(
+            place_key(c, k),
+            fmt::format("{} {} {} at t = 0{}, closer than d0/2 = {:.6g} m (the wall particles there would be "
+                        "left out): move the body at least d0/2 from the wall (only a fixed body may stand "
+                        "on a wall, with a flat side on it)",
+                        wall_text(c, w), near, body_text(c.bodies[k]), where, 0.5 * c.d0));
+      }
+  }
+}
+
 using CrossCheck = void (*)(const Case&, const LoadContext&);
 
 /// Run in this order (later checks may rely on earlier ones, e.g. walls on a valid domain, the
 /// geometric body checks on valid polygons).
 constexpr CrossCheck kChecks[] = {check_domain,           check_periodic_width, check_walls,
+                                  check_walls_off_periodic_edges, check_wall_orientation, check_wall_overlap,
+                                  check_wall_gaps, check_wall_joints, check_wall_chains,
                                   check_unused_keys,      check_polygons,       check_density,
                                   check_schedules,        check_fixed_bodies,   check_body_sizes,
-                                  check_bodies_in_domain, check_body_overlap};
+                                  check_bodies_in_domain, check_body_overlap, check_walls_clear_of_bodies};
 
 }  // namespace
 

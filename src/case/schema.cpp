@@ -481,7 +481,12 @@ std::vector<SectionSpec> make_sections() {
                     "Repulsion that keeps bodies apart from each other and from walls (P.38, generalised to "
                     "the closest-surface distance)."),
       array_section("wall", &Case::walls,
-                    "Straight wall segments, one [[wall]] table each; list a closed box counter-clockwise."),
+                    "Straight wall segments, one [[wall]] table each; list a closed box counter-clockwise. Checked at "
+                    "load: a wall on an edge of the domain has the fluid (its left side) inside; walls that meet "
+                    "share an end point, one's `to` being the next one's `from`, at most two per point (ends "
+                    "closer than d0/2 must be equal); no wall lies on a periodic edge, overlaps another on the "
+                    "same line, or comes within d0/2 of a body (a fixed body may stand on a wall with a flat "
+                    "side)."),
       array_section("probe", &Case::probes,
                     "Line probes, one [[probe]] table each: fields interpolated along a segment."),
       array_section("body", &Case::bodies,

@@ -1,0 +1,278 @@
+// [[wall]] cross checks at load (issue 14): orientation on the domain edges, periodic edges,
+// overlapping walls, chains (gaps, joints, head to tail), walls against bodies. Each error
+// names the file, the line and the key; every shipped case still loads.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "case_bodies_fixtures.hpp"
+
+using namespace particula;
+using namespace case_bodies_test;
+
+namespace {
+
+/// kBase (0.02 x 0.06 m, d0 = 1e-4 m) closed by four walls listed counter-clockwise.
+const std::string kWalls = R"(
+[[wall]]
+name = "bottom"
+from = [0.0, 0.0]
+to = [0.02, 0.0]
+
+[[wall]]
+name = "right"
+from = [0.02, 0.0]
+to = [0.02, 0.06]
+
+[[wall]]
+name = "top"
+from = [0.02, 0.06]
+to = [0.0, 0.06]
+
+[[wall]]
+name = "left"
+from = [0.0, 0.06]
+to = [0.0, 0.0]
+)";
+
+const std::string kBox = kBase + kWalls;
+
+/// kBox with one more [[wall]] table.
+std::string box_with_wall(const std::string& name, const std::string& from, const std::string& to) {
+  return kBox + "\n[[wall]]\nname = \"" + name + "\"\nfrom = " + from + "\nto = " + to + "\n";
+}
+
+/// A horizontal baffle across the middle of kBox, fluid above it (its left side).
+const std::string kBaffle = box_with_wall("baffle", "[0.005, 0.03]", "[0.015, 0.03]");
+
+/// kBox made periodic along x, with walls only along the bottom and top.
+std::string periodic_x_channel() {
+  std::string text = with(kBase, "max = [0.02, 0.06]", "max = [0.02, 0.06]\nperiodic = [true, false]");
+  return text + R"(
+[[wall]]
+name = "lower"
+from = [0.0, 0.0]
+to = [0.02, 0.0]
+
+[[wall]]
+name = "upper"
+from = [0.02, 0.06]
+to = [0.0, 0.06]
+)";
+}
+
+}  // namespace
+
+TEST(CaseWallErrors, ShippedCasesAndFixturesLoad) {
+  const std::filesystem::path source = PARTICULA_SOURCE_DIR;
+  int n = 0;
+  for (const auto& e : std::filesystem::directory_iterator(source / "cases")) {
+    if (e.path().extension() != ".toml") continue;
+    EXPECT_NO_THROW(load_case(e.path())) << e.path();
+    ++n;
+  }
+  EXPECT_GE(n, 9);
+  EXPECT_NO_THROW(load_case(source / "tests" / "data" / "bodies.toml"));
+  EXPECT_NO_THROW(load(kBox));
+  EXPECT_NO_THROW(load(kBaffle));
+  EXPECT_NO_THROW(load(periodic_x_channel()));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Orientation on the domain edges.
+
+TEST(CaseWallErrors, ClockwiseWallOnADomainEdge) {
+  expect_error(
+      with(kBox, "from = [0.0, 0.0]\nto = [0.02, 0.0]", "from = [0.02, 0.0]\nto = [0.0, 0.0]"),
+      "wall[0].from", "from = [0.02, 0.0]",
+      "the fluid would be on the right of wall 'bottom' (wall[0]) (it lies on the domain edge y = 0 m; "
+      "the fluid lies on the left walking from `from` to `to`): swap from and to");
+  expect_error(
+      with(kBox, "from = [0.02, 0.0]\nto = [0.02, 0.06]", "from = [0.02, 0.06]\nto = [0.02, 0.0]"),
+      "wall[1].from", "from = [0.02, 0.06]\nto = [0.02, 0.0]",
+      "the fluid would be on the right of wall 'right' (wall[1]) (it lies on the domain edge x = 0.02 m");
+  expect_error(with(kBox, "from = [0.02, 0.06]\nto = [0.0, 0.06]", "from = [0.0, 0.06]\nto = [0.02, 0.06]"),
+               "wall[2].from", "from = [0.0, 0.06]\nto = [0.02, 0.06]",
+               "wall 'top' (wall[2]) (it lies on the domain edge y = 0.06 m");
+  expect_error(with(kBox, "from = [0.0, 0.06]\nto = [0.0, 0.0]", "from = [0.0, 0.0]\nto = [0.0, 0.06]"),
+               "wall[3].from", "from = [0.0, 0.0]\nto = [0.0, 0.06]",
+               "wall 'left' (wall[3]) (it lies on the domain edge x = 0 m");
+  // A wall on part of an edge counts too.
+  expect_error(kBase + "\n[[wall]]\nname = \"ledge\"\nfrom = [0.0, 0.02]\nto = [0.0, 0.03]\n", "wall[0].from",
+               "from = [0.0, 0.02]", "the fluid would be on the right of wall 'ledge' (wall[0])");
+}
+
+TEST(CaseWallErrors, WallOnAPeriodicBoundary) {
+  const std::string box = with(kBox, "max = [0.02, 0.06]", "max = [0.02, 0.06]\nperiodic = [true, false]");
+  expect_error(
+      box, "wall[1].from", "from = [0.02, 0.0]\nto = [0.02, 0.06]",
+      "wall 'right' (wall[1]) lies on the domain edge x = 0.02 m, but the domain is periodic along x: "
+      "the fluid wraps around that edge and would be on both sides of the wall");
+  // Even a correctly oriented wall along a periodic edge (the check runs before orientation).
+  const std::string channel = with(periodic_x_channel(), "max = [0.02, 0.06]\nperiodic = [true, false]",
+                                   "max = [0.02, 0.06]\nperiodic = [false, true]");
+  expect_error(channel, "wall[0].from", "from = [0.0, 0.0]",
+               "wall 'lower' (wall[0]) lies on the domain edge y = 0 m, but the domain is periodic along y");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Walls on one line.
+
+TEST(CaseWallErrors, DuplicatedWall) {
+  expect_error(
+      box_with_wall("again", "[0, 0]", "[0.02, 0]"), "wall[4].from", "from = [0, 0]",
+      "wall 'again' (wall[4]) duplicates wall 'bottom' (wall[0]): they share 0.02 m of the same line");
+  expect_error(kBaffle + "\n[[wall]]\nname = \"back\"\nfrom = [0.015, 0.03]\nto = [0.005, 0.03]\n",
+               "wall[5].from", "from = [0.015, 0.03]",
+               "wall 'back' (wall[5]) duplicates (reversed) wall 'baffle' (wall[4])");
+}
+
+TEST(CaseWallErrors, CollinearWallsOverlapping) {
+  expect_error(
+      box_with_wall("patch", "[0.005, 0.0]", "[0.01, 0.0]"), "wall[4].from", "from = [0.005, 0.0]",
+      "wall 'patch' (wall[4]) overlaps wall 'bottom' (wall[0]): they share 0.005 m of the same line");
+  // Collinear pieces that meet at an end point are a split wall, which is fine.
+  EXPECT_NO_THROW(load(with(kBox, "to = [0.02, 0.0]\n",
+                            "to = [0.012, 0.0]\n\n[[wall]]\nname = \"bottom2\"\nfrom = [0.012, 0.0]\n"
+                            "to = [0.02, 0.0]\n")));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Chains.
+
+TEST(CaseWallErrors, ChainNotClosed) {
+  expect_error(
+      with(kBox, "to = [0.0, 0.0]", "to = [0.0, 0.00003]"), "wall[3].to", "to = [0.0, 0.00003]",
+      "wall 'left' (wall[3]) ends at [0.0, 3e-05], a gap of 3e-05 m from where wall 'bottom' (wall[0]) "
+      "starts ([0.0, 0.0]): end points closer than d0/2 = 5e-05 m must be the same point");
+  // Across the periodic boundary: the lower wall nearly spans the period.
+  expect_error(
+      with(periodic_x_channel(), "to = [0.02, 0.0]", "to = [0.01997, 0.0]"), "wall[0].to",
+      "to = [0.01997, 0.0]",
+      "wall 'lower' (wall[0]) ends at [0.01997, 0.0], a gap of 3e-05 m from where wall 'lower' (wall[0]) "
+      "starts");
+  // d0/2 apart is an opening, not a gap.
+  EXPECT_NO_THROW(load(with(kBox, "to = [0.0, 0.0]", "to = [0.0, 0.00005]")));
+}
+
+TEST(CaseWallErrors, MoreThanTwoWallsAtAPoint) {
+  expect_error(
+      box_with_wall("diagonal", "[0.0, 0.0]", "[0.01, 0.01]"), "wall[4].from",
+      "from = [0.0, 0.0]\nto = [0.01, 0.01]",
+      "3 wall ends meet at [0.0, 0.0]: wall 'bottom' (wall[0]), wall 'left' (wall[3]), wall 'diagonal' "
+      "(wall[4]); at most two walls may share an end point");
+}
+
+TEST(CaseWallErrors, JoinedWallsWithOppositeOrientations) {
+  // Two inner walls that both end at [0.01, 0.02].
+  const std::string vee = kBox +
+                          "\n[[wall]]\nname = \"a\"\nfrom = [0.005, 0.02]\nto = [0.01, 0.02]\n"
+                          "\n[[wall]]\nname = \"b\"\nfrom = [0.01, 0.03]\nto = [0.010, 0.020]\n";
+  expect_error(vee, "wall[5].to", "to = [0.010, 0.020]",
+               "wall 'b' (wall[5]) and wall 'a' (wall[4]) both end at [0.01, 0.02]: they have opposite "
+               "orientations");
+  EXPECT_NE(error_of(vee).message().find("swap from and to of wall 'b' (wall[5])"), std::string::npos);
+  EXPECT_NO_THROW(load(
+      with(vee, "from = [0.01, 0.03]\nto = [0.010, 0.020]", "from = [0.010, 0.020]\nto = [0.01, 0.03]")));
+  // A step on the floor listed against the floor: the wall on the domain edge is the one that is right.
+  const std::string step = kBase +
+                           "\n[[wall]]\nname = \"riser\"\nfrom = [0.01, 0.005]\nto = [0.01, 0.0]\n"
+                           "\n[[wall]]\nname = \"floor\"\nfrom = [0.0, 0.0]\nto = [0.010, 0.0]\n";
+  expect_error(step, "wall[1].to", "to = [0.010, 0.0]",
+               "wall 'floor' (wall[1]) and wall 'riser' (wall[0]) both end at [0.01, 0.0]");
+  EXPECT_NE(error_of(step).message().find("swap from and to of wall 'riser' (wall[0])"), std::string::npos);
+  // Two that both start at a point.
+  expect_error(kBase +
+                   "\n[[wall]]\nfrom = [0.005, 0.02]\nto = [0.01, 0.02]\n"
+                   "\n[[wall]]\nfrom = [0.005, 0.02]\nto = [0.005, 0.03]\n",
+               "wall[1].from", "from = [0.005, 0.02]\nto = [0.005, 0.03]",
+               "wall 'wall1' (wall[1]) and wall 'wall0' (wall[0]) both start at [0.005, 0.02]");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Walls against bodies.
+
+TEST(CaseWallErrors, WallCutsThroughABody) {
+  expect_error(kBaffle +
+                   "\n[[body]]\nshape = \"circle\"\ncenter = [0.01, 0.031]\nradius = 0.00125\n"
+                   "density = 1000\n",
+               "body[0].center", "center = [0.01, 0.031]",
+               "wall 'baffle' (wall[4]) cuts through body 'body0' (circle) at t = 0: move the body clear of "
+               "the wall");
+  // A wall entirely inside a polygon.
+  expect_error(kBaffle +
+                   "\n[[body]]\nshape = \"polygon\"\nmotion = \"fixed\"\n"
+                   "vertices = [[0.004, 0.029], [0.016, 0.029], [0.016, 0.031], [0.004, 0.031]]\n",
+               "body[0].vertices", "vertices = [[0.004",
+               "wall 'baffle' (wall[4]) cuts through body 'body0' (polygon)");
+}
+
+TEST(CaseWallErrors, BodyWithinHalfD0OfAWall) {
+  const std::string disc = kBox +
+                           "\n[[body]]\nname = \"disc\"\nshape = \"circle\"\ncenter = [0.01, 0.00129]\n"
+                           "radius = 0.00125\ndensity = 1000\n";
+  expect_error(
+      disc, "body[0].center", "center = [0.01, 0.00129]",
+      "wall 'bottom' (wall[0]) passes 4e-05 m from body 'disc' (circle) at t = 0, closer than d0/2 = "
+      "5e-05 m (the wall particles there would be left out): move the body at least d0/2 from the wall");
+  EXPECT_NO_THROW(load(with(disc, "center = [0.01, 0.00129]", "center = [0.01, 0.0013]")));
+  // Sampled shapes: an ellipse and a polygon near a wall.
+  expect_error(kBox +
+                   "\n[[body]]\nshape = \"ellipse\"\ncenter = [0.01, 0.00104]\nsemi_axes = [0.002, 0.001]\n"
+                   "density = 1000\n",
+               "body[0].center", "center = [0.01, 0.00104]",
+               "wall 'bottom' (wall[0]) passes 4e-05 m from body 'body0' (ellipse)");
+  expect_error(kBox +
+                   "\n[[body]]\nshape = \"polygon\"\ndensity = 1000\n"
+                   "vertices = [[0.019, 0.01], [0.01997, 0.011], [0.019, 0.012], [0.018, 0.011]]\n",
+               "body[0].vertices", "vertices = [[0.019",
+               "wall 'right' (wall[1]) passes 3e-05 m from body 'body0' (polygon)");
+}
+
+TEST(CaseWallErrors, BodyNearAWallAcrossThePeriodicBoundary) {
+  // The baffle ends on the periodic boundary x = 0.02; the disc near x = 0 reaches its image.
+  const std::string text = periodic_x_channel() +
+                           "\n[[wall]]\nname = \"baffle\"\nfrom = [0.015, 0.03]\nto = [0.02, 0.03]\n"
+                           "\n[[body]]\nshape = \"circle\"\ncenter = [0.00129, 0.03]\nradius = 0.00125\n"
+                           "density = 1000\n";
+  expect_error(
+      text, "body[0].center", "center = [0.00129, 0.03]",
+      "wall 'baffle' (wall[2]) passes 4e-05 m from body 'body0' (circle) at t = 0 across the periodic "
+      "boundary");
+  EXPECT_NO_THROW(load(with(text, "center = [0.00129, 0.03]", "center = [0.0013, 0.03]")));
+}
+
+TEST(CaseWallErrors, OnlyAFixedBodyStandsOnAWall) {
+  // The half-disc obstacle of paper 7.5 on the left wall loads when fixed (as cases/ellipse_obstacle.toml).
+  const std::string obstacle = kBox +
+                               "\n[[body]]\nname = \"obstacle\"\nshape = \"half_disc\"\n"
+                               "center = [0.0, 0.04]\nradius = 0.005\nmotion = \"fixed\"\n";
+  EXPECT_NO_THROW(load(obstacle));
+  expect_error(with(obstacle, "motion = \"fixed\"", "density = 1000"), "body[0].center",
+               "center = [0.0, 0.04]",
+               "wall 'left' (wall[3]) touches body 'obstacle' (half_disc) at t = 0, closer than d0/2");
+  // Standing with a gap under it is not standing.
+  expect_error(with(obstacle, "center = [0.0, 0.04]", "center = [0.00003, 0.04]"), "body[0].center",
+               "center = [0.00003, 0.04]", "wall 'left' (wall[3]) passes 3e-05 m from body 'obstacle'");
+  // On an inner wall: a half-disc or polygon on its fluid side stands on it, on the other side
+  // it does not (the fluid would be inside it).
+  const std::string dome = kBaffle +
+                           "\n[[body]]\nshape = \"half_disc\"\ncenter = [0.01, 0.03]\nradius = 0.004\n"
+                           "angle = 1.5707963267948966\nmotion = \"fixed\"\n";
+  EXPECT_NO_THROW(load(dome));
+  expect_error(with(dome, "angle = 1.5707963267948966", "angle = -1.5707963267948966"), "body[0].center",
+               "center = [0.01, 0.03]", "wall 'baffle' (wall[4]) touches body 'body0' (half_disc)");
+  const std::string block = kBaffle +
+                            "\n[[body]]\nshape = \"polygon\"\nmotion = \"fixed\"\n"
+                            "vertices = [[0.008, 0.03], [0.012, 0.03], [0.012, 0.032], [0.008, 0.032]]\n";
+  EXPECT_NO_THROW(load(block));
+  expect_error(with(block, "[0.012, 0.032], [0.008, 0.032]", "[0.012, 0.028], [0.008, 0.028]"),
+               "body[0].vertices", "vertices = [[0.008",
+               "wall 'baffle' (wall[4]) touches body 'body0' (polygon)");
+  // A block standing on the baffle but reaching through it (an L shape) cuts it.
+  expect_error(kBaffle +
+                   "\n[[body]]\nshape = \"polygon\"\nmotion = \"fixed\"\n"
+                   "vertices = [[0.008, 0.03], [0.0095, 0.03], [0.0095, 0.028], [0.0115, 0.028], "
+                   "[0.0115, 0.032], [0.008, 0.032]]\n",
+               "body[0].vertices", "vertices = [[0.008", "wall 'baffle' (wall[4]) cuts through body 'body0'");
+}
