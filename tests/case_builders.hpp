@@ -26,7 +26,7 @@ inline Case closed_box(real W, real H, real d0) {
 
 /// Start-up channel between plates y = 0 and y = L, periodic in x, `n_across` particles
 /// across. The upper plate moves at `v_top` (Couette); `force` drives Poiseuille flow.
-/// Parameters of ../shared/reference/README.md.
+/// Parameters of reference/README.md.
 inline Case startup_channel(int n_across, real v_top, real force) {
   Case c;
   const real L = 1e-3;

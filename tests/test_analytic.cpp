@@ -1,4 +1,4 @@
-// The exact solutions reproduce the table of ../shared/reference/README.md.
+// The exact solutions reproduce the table of reference/README.md.
 #include <gtest/gtest.h>
 
 #include "particula/validation/analytic.hpp"

@@ -1,6 +1,6 @@
 // Validated fluid solver: start-up Couette and Poiseuille flows against their series
 // solutions, the Taylor-Green vortex decay, and a fluid at rest under gravity
-// (../shared/reference/README.md). Coarse but tight enough to catch a wrong term.
+// (reference/README.md). Coarse but tight enough to catch a wrong term.
 #include <gtest/gtest.h>
 
 #include <cmath>

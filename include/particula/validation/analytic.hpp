@@ -1,4 +1,4 @@
-// Exact solutions used for validation (../shared/reference/README.md).
+// Exact solutions used for validation (reference/README.md).
 #pragma once
 
 #include "particula/core/types.hpp"
