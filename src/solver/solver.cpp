@@ -531,7 +531,40 @@ std::optional<Failure> Solver::check_health() const {
   else
     std::snprintf(buf, sizeof buf, "%s particle %lld left the closed domain", kind, static_cast<long long>(worst));
   f.what = buf;
+  if (P_.is_fluid(i)) f.what += likely_cause(P_.x[i]);
   return f;
+}
+
+std::string Solver::likely_cause(Vec2 x) const {
+  // The nearest surface particle (a search over the boundary block: only on failure).
+  real best = 1e300;
+  std::size_t s = P_.n_boundary;
+  for (std::size_t k = 0; k < P_.n_boundary; ++k) {
+    if (P_.kind[k] != Kind::Boundary) continue;
+    const real d2 = norm2(domain_.separation(x, P_.x[k]));
+    if (d2 < best) {
+      best = d2;
+      s = k;
+    }
+  }
+  if (s == P_.n_boundary) return "";
+  const real d = dot(domain_.separation(x, P_.x[s]), P_.normal[s]) / prm_.d0;
+  const RigidGroup& g = groups_[static_cast<std::size_t>(P_.group[s])];
+  const std::string where = (g.is_wall ? "wall '" : "body '") + g.name + "'";
+  char buf[640];
+  if (d < 0.5)
+    std::snprintf(buf, sizeof buf,
+                  "; it is %.2f d0 from the surface of %s: likely cause: fluid squeezed against that surface "
+                  "(two surfaces closing faster than the fluid can leave the gap, or a contact too soft to keep "
+                  "them apart: see the collision.* keys; numerics.surface_guard sets the keep-out distance)",
+                  d, where.c_str());
+  else
+    std::snprintf(buf, sizeof buf,
+                  "; the nearest surface (%s) is %.2f d0 away: likely cause: a flow too fast or too under-resolved "
+                  "for this resolution (Mach number V/fluid.c above about 0.1, or too few particles across a "
+                  "body or a gap: lower resolution.d0 or raise fluid.c)",
+                  where.c_str(), d);
+  return buf;
 }
 
 }  // namespace particula

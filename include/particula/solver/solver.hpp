@@ -179,6 +179,8 @@ class Solver {
   GroupMotion group_motion(const RigidGroup& g) const;
   void reorder_fluid();
   std::optional<Failure> check_health() const;
+  /// What a failure at fluid position x most likely comes from, for the exit-3 message.
+  std::string likely_cause(Vec2 x) const;
   real max_speed() const;
 
   StageParams stage_params(real dt) const;
