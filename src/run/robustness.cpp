@@ -90,7 +90,7 @@ double gap_between(const Case& c, const BodyGeometry& g, std::size_t a, Vec2 pa,
   return std::min(one_sided_gap(c, g.samples[a], pa, aa, B, pb, ab), one_sided_gap(c, g.samples[b], pb, ab, A, pa, aa));
 }
 
-double gap_to_wall(const Case& c, const BodyGeometry& g, std::size_t a, Vec2 pa, double aa, const WallSpec& w) {
+double gap_to_wall(const BodyGeometry& g, std::size_t a, Vec2 pa, double aa, const WallSpec& w) {
   const Vec2 t = w.to - w.from;
   const double L2 = norm2(t);
   const Vec2 n = Vec2{-t.y, t.x} / std::sqrt(L2);  // the fluid's side
@@ -102,7 +102,6 @@ double gap_to_wall(const Case& c, const BodyGeometry& g, std::size_t a, Vec2 pa,
     if (u < 0 || u > 1) continue;  // beyond the segment's ends another wall acts
     best = std::min(best, dot(p - w.from, n));
   }
-  (void)c;
   return best;
 }
 
@@ -205,7 +204,7 @@ double body_gap(const Case& c, std::size_t a, Vec2 pa, double aa, std::size_t b,
 
 double wall_gap(const Case& c, std::size_t a, Vec2 pa, double aa, std::size_t w) {
   const BodyGeometry g(c);
-  return gap_to_wall(c, g, a, pa, aa, c.walls.at(w));
+  return gap_to_wall(g, a, pa, aa, c.walls.at(w));
 }
 
 std::vector<ValidationCheck> check_no_overlap(const fs::path& run_dir, const Case& c, double max_overlap) {
@@ -223,7 +222,7 @@ std::vector<ValidationCheck> check_no_overlap(const fs::path& run_dir, const Cas
       const Vec2 pa{A.x[k], A.y[k]};
       if (moving(c.bodies[a]))
         for (std::size_t w = 0; w < c.walls.size(); ++w)
-          note(gap_to_wall(c, g, a, pa, A.angle[k], c.walls[w]), A.t[k],
+          note(gap_to_wall(g, a, pa, A.angle[k], c.walls[w]), A.t[k],
                fmt::format("body '{}' and wall '{}'", c.bodies[a].name, c.walls[w].name));
       for (std::size_t b = a + 1; b < n; ++b) {
         if (!moving(c.bodies[a]) && !moving(c.bodies[b])) continue;
@@ -342,7 +341,7 @@ std::vector<ValidationCheck> check_bodies_touching(const fs::path& run_dir, cons
     ++free;
     const Vec2 pa{tracks[a].x[k], tracks[a].y[k]};
     double nearest = kInf;
-    for (const WallSpec& w : c.walls) nearest = std::min(nearest, gap_to_wall(c, g, a, pa, tracks[a].angle[k], w));
+    for (const WallSpec& w : c.walls) nearest = std::min(nearest, gap_to_wall(g, a, pa, tracks[a].angle[k], w));
     for (std::size_t b = 0; b < n; ++b)
       if (b != a)
         nearest = std::min(nearest, gap_between(c, g, a, pa, tracks[a].angle[k], b, {tracks[b].x[k], tracks[b].y[k]},
@@ -364,7 +363,7 @@ std::vector<ValidationCheck> check_rebound(const fs::path& run_dir, const Case& 
   const Vec2 t = (w.to - w.from) / norm(w.to - w.from), n{-t.y, t.x};
   std::vector<double> gap(tr.size()), vn(tr.size());
   for (std::size_t k = 0; k < tr.size(); ++k) {
-    gap[k] = gap_to_wall(c, g, body, {tr.x[k], tr.y[k]}, tr.angle[k], w);
+    gap[k] = gap_to_wall(g, body, {tr.x[k], tr.y[k]}, tr.angle[k], w);
     vn[k] = tr.vx[k] * n.x + tr.vy[k] * n.y;  // > 0: away from the wall
   }
   const std::size_t closest = static_cast<std::size_t>(std::min_element(gap.begin(), gap.end()) - gap.begin());
