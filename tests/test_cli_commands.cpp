@@ -24,14 +24,14 @@ bool has_matplotlib() {
 }  // namespace
 
 TEST(CliCommands, EverySubcommandHasHelp) {
-  for (const char* sub : {"run", "resume", "info", "validate", "plot"}) {
+  for (const char* sub : {"run", "resume", "info", "validate", "generate", "plot"}) {
     const auto r = cli({sub, "--help"});
     EXPECT_EQ(r.code, 0) << sub << ": " << r.output;
     EXPECT_NE(r.output.find("Usage"), std::string::npos) << sub << ": " << r.output;
   }
   const auto r = cli({"--help"});
   EXPECT_EQ(r.code, 0);
-  for (const char* sub : {"run", "resume", "info", "validate", "plot"})
+  for (const char* sub : {"run", "resume", "info", "validate", "generate", "plot"})
     EXPECT_NE(r.output.find(sub), std::string::npos) << r.output;
   EXPECT_EQ(cli({"frobnicate"}).code, 2);
 }
@@ -95,6 +95,25 @@ TEST(CliCommands, ValidateOneQuickCaseWritesTheReport) {
   EXPECT_TRUE(fs::exists(dir / "couette" / "summary.json"));
   const auto bad = cli({"validate", "--case", "nonsense", "--out", dir.string()});
   EXPECT_EQ(bad.code, 2) << bad.output;
+}
+
+TEST(CliCommands, ValidateGroupIsChecked) {
+  const fs::path dir = fresh_dir("validate_group");
+  const auto bad = cli({"validate", "--group", "nonsense", "--out", dir.string()});
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(cli({"validate", "--help"}).output.find("robustness"), std::string::npos);
+}
+
+TEST(CliCommands, GenerateWritesALoadableCase) {
+  const fs::path dir = fresh_dir("generate");
+  const auto r = cli({"generate", "--seed", "7", "--out", (dir / "seven.toml").string()});
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto out = cli({"generate", "--seed", "7"});
+  EXPECT_EQ(out.code, 0);
+  EXPECT_EQ(out.output, read_text(dir / "seven.toml")) << "stdout and --out give the same text";
+  const auto info = cli({"info", (dir / "seven.toml").string(), "--no-timing"});
+  EXPECT_TRUE(info.code == 0 || info.code == 2) << info.output;  // a refusal at load is allowed
+  EXPECT_EQ(cli({"generate"}).code, 2) << "--seed is required";
 }
 
 // The checks themselves, on fabricated run directories.

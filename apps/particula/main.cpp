@@ -1,11 +1,13 @@
 // particula: command-line program (design.md, command-line contract).
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 
 #include "particula/run/info.hpp"
 #include "particula/run/plots.hpp"
+#include "particula/run/random_case.hpp"
 #include "particula/run/runner.hpp"
 #include "particula/run/validate.hpp"
 
@@ -52,16 +54,29 @@ int main(int argc, char** argv) {
   particula::ValidateOptions validate_opt;
   auto* validate = app.add_subcommand(
       "validate",
-      "Run the validation cases (exact solutions and the paper's five body cases) against their references and "
-      "write DIR/report.md (exit 3 on a fail)");
+      "Run the validation cases (exact solutions and the paper's five body cases; the robustness cases with "
+      "--group robustness) against their references and write DIR/report.md (exit 3 on a fail)");
   validate->add_flag("--quick", validate_opt.quick,
-                     "Analytic cases at the shipped resolution (else twice as fine); paper cases at a coarse level "
-                     "(else the paper's resolution)");
+                     "Analytic and robustness cases at the shipped resolution (else twice as fine); paper cases at a "
+                     "coarse level (else the paper's resolution)");
   validate->add_option("--out", validate_opt.out_dir, "Output directory (default runs/validate)");
   validate->add_option("--threads", validate_opt.threads, "OpenMP threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
-  validate->add_option("--case", validate_opt.only, "Run only this validation case (repeatable)");
+  validate->add_option("--case", validate_opt.only, "Run only this validation case, of any group (repeatable)");
+  std::vector<std::string> validate_groups;
+  validate->add_option("--group", validate_groups,
+                       "Run only this group: analytic, paper or robustness (repeatable; default: analytic and "
+                       "paper, the robustness cases only when asked for)")
+      ->check(CLI::IsMember({"analytic", "paper", "robustness"}));
   validate->add_flag("--quiet", validate_opt.quiet, "Only the final line");
+
+  std::uint64_t generate_seed = 0;
+  std::string generate_out;
+  auto* generate = app.add_subcommand(
+      "generate", "Write a random valid case file from a seed (bodies, box or channel, forces; for robustness tests)");
+  generate->add_option("--seed", generate_seed, "Seed of the random case (the same seed gives the same file)")
+      ->required();
+  generate->add_option("--out", generate_out, "Case file to write (default: standard output)");
 
   std::string plot_dir;
   auto* plot = app.add_subcommand("plot", "(Re)draw the plots of a run directory into DIR/plots (tools/plot_run.py)");
@@ -79,7 +94,14 @@ int main(int argc, char** argv) {
     if (*run) return particula::run_command(run_case, run_opt);
     if (*resume) return particula::resume_command(resume_opt);
     if (*info) return particula::info_command(info_case, info_overrides, !info_no_timing);
-    if (*validate) return particula::validate_command(validate_opt);
+    if (*validate) {
+      for (const auto& g : validate_groups)
+        validate_opt.groups.push_back(g == "analytic" ? particula::ValidationGroup::Analytic
+                                      : g == "paper"  ? particula::ValidationGroup::Paper
+                                                      : particula::ValidationGroup::Robustness);
+      return particula::validate_command(validate_opt);
+    }
+    if (*generate) return particula::generate_command(generate_seed, generate_out);
     if (*plot) return particula::plot_command(plot_dir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "internal error: %s\n", e.what());

@@ -133,4 +133,52 @@ double json_number_field(const std::string& text, const std::string& key) {
   throw std::runtime_error("JSON has no field '" + key + "'");
 }
 
+std::vector<std::pair<std::string, double>> json_object_numbers(const std::string& text, const std::string& key) {
+  const std::string quoted = json_escape(key);
+  std::size_t i = std::string::npos;
+  for (std::size_t at = text.find(quoted); at != std::string::npos; at = text.find(quoted, at + 1)) {
+    const std::size_t colon = text.find_first_not_of(" \t\r\n", at + quoted.size());
+    if (colon != std::string::npos && text[colon] == ':') {
+      i = text.find_first_not_of(" \t\r\n", colon + 1);
+      break;
+    }
+  }
+  if (i == std::string::npos) throw std::runtime_error("JSON has no field '" + key + "'");
+  if (text[i] != '{') throw std::runtime_error("JSON field '" + key + "' is not an object");
+  std::vector<std::pair<std::string, double>> out;
+  int depth = 0;
+  for (++i; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (ch == '{' || ch == '[') ++depth;
+    if (ch == '}' || ch == ']') {
+      if (depth-- == 0) return out;
+      continue;
+    }
+    if (ch != '"' || depth != 0) continue;
+    // a member name (names written by JsonObject need no unescaping here: counters are plain words)
+    const std::size_t close = text.find('"', i + 1);
+    if (close == std::string::npos) break;
+    const std::string name = text.substr(i + 1, close - i - 1);
+    std::size_t v = text.find_first_not_of(" \t\r\n", close + 1);
+    if (v == std::string::npos || text[v] != ':') {
+      i = close;
+      continue;
+    }
+    v = text.find_first_not_of(" \t\r\n", v + 1);
+    if (v == std::string::npos) break;
+    double value = 0;
+    if (text.compare(v, 4, "null") == 0) {
+      out.emplace_back(name, std::numeric_limits<double>::quiet_NaN());
+    } else if (std::from_chars(text.data() + v, text.data() + text.size(), value).ec == std::errc()) {
+      out.emplace_back(name, value);
+    }
+    i = close;
+    if (text[v] == '"') {  // a string value: skipped whole, or its text would be read as a name
+      i = text.find('"', v + 1);
+      if (i == std::string::npos) break;
+    }
+  }
+  throw std::runtime_error("JSON field '" + key + "': unterminated object");
+}
+
 }  // namespace particula::io

@@ -55,4 +55,10 @@ std::string json_escape(std::string_view s);
 /// when the key is absent or its value is neither a number nor null. Meant for tests.
 double json_number_field(const std::string& text, const std::string& key);
 
+/// The members of the object after the first `"key":` whose values are numbers (null as NaN),
+/// in their order, e.g. the guard counters of summary.json whatever their names. Members of
+/// other types are skipped; nested objects are not entered. Throws std::runtime_error when the
+/// key is absent or its value is not an object.
+std::vector<std::pair<std::string, double>> json_object_numbers(const std::string& text, const std::string& key);
+
 }  // namespace particula::io

@@ -1,7 +1,9 @@
 // `particula validate`: runs the validation cases and compares each with its reference,
-// writing DIR/report.md. The suite is a list of entries: the analytic cases and the paper's
-// body cases (method.md section 12, reference data in reference/); a new benchmark is one more
-// entry in validation_entries().
+// writing DIR/report.md. The suite is a list of entries in three groups: the analytic cases, the
+// paper's body cases (method.md section 12, reference data in reference/) and the robustness
+// cases (cases/robustness/, issue 14: untuned cases at default numerics, checked for physical
+// sanity rather than against a published curve); a new benchmark is one more entry in
+// validation_entries().
 #pragma once
 
 #include <filesystem>
@@ -26,10 +28,17 @@ struct ValidationCheck {
   bool report_only = false;
 };
 
+/// The groups of `particula validate --group`.
+enum class ValidationGroup { Analytic, Paper, Robustness };
+
+/// The group's name on the command line ("analytic", "paper", "robustness").
+const char* group_name(ValidationGroup g);
+
 /// One validation case: a shipped case file run at the quick or the default level, and how to
 /// judge the finished run directory.
 struct ValidationEntry {
   std::string name;       // subdirectory of the validation output and report row
+  ValidationGroup group = ValidationGroup::Analytic;
   std::string case_file;  // relative to the source tree, e.g. "cases/couette.toml"
   std::vector<std::string> overrides;  // extra --set for both modes
   /// The checks of a finished run (directory and resolved case). May throw io::IoError when an
@@ -39,8 +48,12 @@ struct ValidationEntry {
   /// resolution, the default twice as fine. Paper cases (true): the default runs the case file
   /// as shipped (the paper's resolution: hours), --quick adds `quick_overrides` (a coarse
   /// level, possibly an earlier end).
+  /// Robustness cases use the analytic rule (--quick: the shipped, coarse level; default: twice
+  /// as fine) unless `fine_overrides` is given: then the default adds these instead of halving
+  /// d0 (for a case whose geometry is tied to d0, e.g. a gap of 0.1 d0).
   bool paper = false;
   std::vector<std::string> quick_overrides;
+  std::vector<std::string> fine_overrides;
 };
 
 /// The validation suite, in report order.
@@ -85,11 +98,20 @@ struct ValidateOptions {
   std::filesystem::path out_dir = "runs/validate";
   int threads = 0;
   bool quiet = false;
-  std::vector<std::string> only;  // run only these entries (empty: all)
+  std::vector<std::string> only;  // run only these entries (empty: all of the selected groups)
+  /// The groups to run (empty: analytic and paper, the suite before the robustness group was
+  /// added; robustness cases are run only when asked for, by group or by --case).
+  std::vector<ValidationGroup> groups;
 };
+
+/// Whether `entry` is run under `options` (its group is selected, or it is named by --case).
+bool entry_selected(const ValidationEntry& entry, const ValidateOptions& options);
 
 /// Runs the suite into out_dir/<name>, writes out_dir/report.md; exit 0 when every check
 /// passes, 3 when one fails, 2 on bad input (e.g. an unwritable directory), 130 when interrupted.
+/// Every run's outcome is reported (status, exit code, the failure message of an exit 3, steps,
+/// the guard counters of summary.json); the checks of a run that stopped early are evaluated on
+/// what it wrote, but the case fails.
 int validate_command(const ValidateOptions& options);
 
 }  // namespace particula

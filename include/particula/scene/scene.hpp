@@ -22,6 +22,11 @@ struct Scene {
 PhysicsParams physics_params(const Case& c);
 Scene build_scene(const Case& c);
 
+/// A body's shape in its body frame (origin at the area centroid).
+Shape body_shape(const BodySpec& b);
+/// A body's position at t = 0: the area centroid in world coordinates.
+Vec2 body_position(const BodySpec& b, const Shape& s);
+
 /// Deterministic, platform-independent random numbers (splitmix64) for the seeded lattice
 /// perturbation: the same seed gives the same particles on every compiler and machine.
 class SplitMix64 {

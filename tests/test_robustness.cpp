@@ -1,0 +1,360 @@
+// The robustness group of `particula validate` (issue 14): its checks on fabricated run
+// directories, the shape of the group (case files, levels, default numerics), and (slow, left
+// out under sanitizers) the coarse group itself, one CTest per case so that CTest runs them in
+// parallel.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include <functional>
+
+#include "case_builders.hpp"
+#include "cli_process.hpp"
+#include "particula/case/load.hpp"
+#include "particula/io/atomic_file.hpp"
+#include "particula/io/csv.hpp"
+#include "particula/io/json.hpp"
+#include "particula/io/vtk.hpp"
+#include "particula/run/robustness.hpp"
+#include "particula/run/validate.hpp"
+#include "particula/scene/scene.hpp"
+
+namespace fs = std::filesystem;
+using namespace particula;
+using cli_test::fresh_dir;
+
+namespace {
+
+const fs::path kSource = PARTICULA_SOURCE_DIR;
+
+/// State of one body at one time (the columns of bodies.csv that the checks read).
+struct Row {
+  double x = 0, y = 0, angle = 0, vx = 0, vy = 0, omega = 0, fx = 0, fy = 0;
+};
+
+void write_bodies(const fs::path& dir, int bodies, double dt, double t_end, const std::function<Row(double, int)>& state) {
+  io::CsvWriter csv(dir / "bodies.csv", {"time", "body", "x", "y", "angle", "vx", "vy", "omega", "fx", "fy", "torque",
+                                         "fpx", "fpy", "fvx", "fvy", "fcx", "fcy"});
+  const int n = static_cast<int>(std::lround(t_end / dt));
+  for (int k = 0; k <= n; ++k)
+    for (int b = 0; b < bodies; ++b) {
+      const double t = k * dt;
+      const Row r = state(t, b);
+      csv.row({t, static_cast<double>(b), r.x, r.y, r.angle, r.vx, r.vy, r.omega, r.fx, r.fy, 0, 0, 0, 0, 0, 0, 0});
+    }
+}
+
+BodySpec circle(Vec2 center, real radius, BodyMotion motion = BodyMotion::Free) {
+  BodySpec b;
+  b.name = "c";
+  b.shape = BodyShape::Circle;
+  b.center = center;
+  b.radius = radius;
+  b.density = 2000;
+  b.motion = motion;
+  return b;
+}
+
+/// A 1 cm box at d0 = 1e-4 with two circles of radius 1 mm.
+Case two_circles() {
+  Case c = cases::closed_box(0.01, 0.01, 1e-4);
+  c.bodies = {circle({0.003, 0.005}, 1e-3), circle({0.007, 0.005}, 1e-3)};
+  c.bodies[1].name = "d";
+  return c;
+}
+
+const ValidationCheck& find(const std::vector<ValidationCheck>& checks, const std::string& start) {
+  for (const auto& c : checks)
+    if (c.quantity.rfind(start, 0) == 0) return c;
+  throw std::runtime_error("no check starting with '" + start + "'");
+}
+
+}  // namespace
+
+TEST(RobustnessChecks, OverlapOfBodiesAndWalls) {
+  const fs::path dir = fresh_dir("robust_overlap");
+  const Case c = two_circles();
+  // the circles approach until their surfaces overlap by `depth` d0, the first one also the floor
+  auto approach = [](double depth, double floor_depth) {
+    return [=](double t, int b) {
+      Row r;
+      const double half = 1e-3 - 0.5 * depth * 1e-4 * t;  // half the centre distance at t = 1
+      r.x = b == 0 ? 0.005 - half : 0.005 + half;
+      r.y = 0.005 - (0.004 + floor_depth * 1e-4) * t;
+      return r;
+    };
+  };
+  write_bodies(dir, 2, 0.1, 1, approach(0.2, 0.1));
+  auto ok = check_no_overlap(dir, c);
+  ASSERT_EQ(ok.size(), 1u);
+  EXPECT_TRUE(ok[0].pass) << ok[0].shown;
+  EXPECT_NEAR(ok[0].value, 0.2, 1e-6);
+  write_bodies(dir, 2, 0.1, 1, approach(0.4, 0.1));
+  EXPECT_FALSE(check_no_overlap(dir, c)[0].pass);
+  write_bodies(dir, 2, 0.1, 1, approach(0.1, 0.3));  // into the floor
+  const auto wall = check_no_overlap(dir, c);
+  EXPECT_FALSE(wall[0].pass);
+  EXPECT_NE(wall[0].shown.find("wall 'bottom'"), std::string::npos) << wall[0].shown;
+  EXPECT_NEAR(wall[0].value, 0.3, 0.01);
+}
+
+TEST(RobustnessChecks, GapsOfNonCircularShapes) {
+  Case c = cases::closed_box(0.01, 0.01, 1e-4);
+  BodySpec square;
+  square.name = "square";
+  square.shape = BodyShape::Polygon;
+  square.vertices = {{0.004, 0.004}, {0.006, 0.004}, {0.006, 0.006}, {0.004, 0.006}};
+  square.density = 2000;
+  c.bodies = {square, circle({0.0075, 0.005}, 1e-3)};
+  // centroid (0.005, 0.005); the circle's surface is 0.5 mm from the square's right side
+  EXPECT_NEAR(body_gap(c, 0, {0.005, 0.005}, 0, 1, {0.0075, 0.005}, 0), 5e-4, 1e-6);
+  // turned by 45 degrees the square's corner reaches sqrt(2) mm: 0.0075 - 0.005 - 1.414e-3 - 1e-3
+  EXPECT_NEAR(body_gap(c, 0, {0.005, 0.005}, M_PI / 4, 1, {0.0075, 0.005}, 0), 2.5e-3 - std::sqrt(2.0) * 1e-3 - 1e-3,
+              2e-6);
+  EXPECT_NEAR(wall_gap(c, 0, {0.005, 0.0012}, 0, 0), 2e-4, 1e-9);  // 0.2 mm above the floor
+  EXPECT_NEAR(wall_gap(c, 0, {0.005, 0.0009}, 0, 0), -1e-4, 1e-9);
+}
+
+TEST(RobustnessChecks, KineticEnergyDecayAndRestingBodies) {
+  const fs::path dir = fresh_dir("robust_energy");
+  const Case c = two_circles();
+  // both fall and stop on the floor (1 mm radius: centre at 1 mm + gap)
+  auto settle = [](double tau, double rest_gap) {
+    return [=](double t, int b) {
+      Row r;
+      r.x = b == 0 ? 0.003 : 0.007;
+      r.vy = -0.01 * (t / 0.1) * std::exp(1 - t / tau);
+      r.y = 1e-3 + rest_gap + 3e-3 * std::exp(-t / tau);
+      return r;
+    };
+  };
+  write_bodies(dir, 2, 0.01, 1, settle(0.1, 0.5e-4));
+  for (const auto& k : check_kinetic_energy_decay(dir, c, 0.02)) EXPECT_TRUE(k.pass) << k.quantity << ": " << k.shown;
+  for (const auto& k : check_bodies_touching(dir, c, 1.0)) EXPECT_TRUE(k.pass) << k.quantity << ": " << k.shown;
+  write_bodies(dir, 2, 0.01, 1, settle(0.5, 3e-4));  // still moving, and hovering 3 d0 above the floor
+  EXPECT_FALSE(check_kinetic_energy_decay(dir, c, 0.02)[0].pass);
+  const auto apart = check_bodies_touching(dir, c, 1.0);
+  EXPECT_FALSE(apart[0].pass) << apart[0].shown;
+  EXPECT_EQ(apart[0].value, 0);
+}
+
+TEST(RobustnessChecks, ReboundAgainstTheRestitutionCoefficient) {
+  const fs::path dir = fresh_dir("robust_rebound");
+  Case c = two_circles();
+  c.bodies.resize(1);
+  // falls at 0.5 m/s onto the floor, leaves it at `ratio` x 0.5 m/s (no case.toml: e = 0.8)
+  auto bounce = [](double ratio) {
+    return [=](double t, int) {
+      Row r;
+      r.x = 0.005;
+      const double t_hit = 4e-3;  // the gap closes at t_hit
+      r.y = t < t_hit ? 1e-3 + 0.5 * (t_hit - t) : 1e-3 + ratio * 0.5 * (t - t_hit);
+      r.vy = t < t_hit ? -0.5 : ratio * 0.5;
+      return r;
+    };
+  };
+  write_bodies(dir, 1, 1e-4, 8e-3, bounce(0.75));
+  auto good = check_rebound(dir, c, 0, 0, 0.25);
+  EXPECT_TRUE(find(good, "rebound speed").pass) << find(good, "rebound speed").shown;
+  EXPECT_NEAR(find(good, "rebound speed").value, 0.75, 1e-9);
+  EXPECT_NEAR(find(good, "impact speed").value, 0.5, 1e-9);
+  write_bodies(dir, 1, 1e-4, 8e-3, bounce(0.3));  // a dead bounce
+  EXPECT_FALSE(find(check_rebound(dir, c, 0, 0, 0.25), "rebound speed").pass);
+  // the coefficient of the resolved case wins over the default
+  write_bodies(dir, 1, 1e-4, 8e-3, bounce(0.35));
+  EXPECT_FALSE(find(check_rebound(dir, c, 0, 0, 0.25), "rebound speed").pass);
+  io::write_file_atomic(dir / "case.toml", "[collision]\nrestitution = 0.4\n");
+  EXPECT_TRUE(find(check_rebound(dir, c, 0, 0, 0.25), "rebound speed").pass);
+}
+
+TEST(RobustnessChecks, SqueezeForcesAndGap) {
+  const fs::path dir = fresh_dir("robust_squeeze");
+  Case c = two_circles();
+  for (auto& b : c.bodies) b.motion = BodyMotion::Prescribed;
+  // closing at 1 mm/s to a gap of 0.1 d0 at t = 1, then opening; the force on body 0 opposes
+  // the approach (sign -1) and the parting (sign +1) when `physical`
+  auto squeeze = [](double sign) {
+    return [=](double t, int b) {
+      Row r;
+      const double s = t <= 1 ? t : 2 - t, v = t <= 1 ? 1e-3 : -1e-3;
+      const double half = 1e-3 + 0.5e-5 + 0.5 * 1e-3 * (1 - s);
+      r.x = b == 0 ? 0.005 - half : 0.005 + half;
+      r.y = 0.005;
+      r.vx = b == 0 ? v : -v;
+      r.fx = b == 0 ? sign * -v : 0;
+      return r;
+    };
+  };
+  write_bodies(dir, 2, 0.01, 2, squeeze(1));
+  for (const auto& k : check_prescribed_squeeze(dir, c, 0.1)) EXPECT_TRUE(k.pass) << k.quantity << ": " << k.shown;
+  EXPECT_NEAR(find(check_prescribed_squeeze(dir, c, 0.1), "smallest gap").value, 0.1, 1e-6);
+  write_bodies(dir, 2, 0.01, 2, squeeze(-1));
+  const auto bad = check_prescribed_squeeze(dir, c, 0.1);
+  EXPECT_FALSE(find(bad, "force on body 0 along the line of centres while closing").pass);
+  EXPECT_FALSE(find(bad, "force on body 0 along the line of centres while parting").pass);
+  EXPECT_FALSE(find(check_prescribed_squeeze(dir, c, 0.3), "smallest gap").pass);
+}
+
+TEST(RobustnessChecks, ShearedSuspensionViscosityFromTheWalls) {
+  const fs::path dir = fresh_dir("robust_shear");
+  Case c = cases::startup_channel(20, 1e-3, 0);  // L = 1 mm high, 8 d0 long, top wall at 1 mm/s
+  c.walls[0].velocity = {-1e-3, 0};             // gamma = 2 1/s
+  // walls feel the stress mu_r mu gamma over their length
+  auto walls = [&](double mu_r, double imbalance) {
+    io::CsvWriter csv(dir / "walls.csv", {"time", "wall", "fx", "fy", "fpx", "fpy", "fvx", "fvy"});
+    const double L = c.domain_max.x, tau = mu_r * c.mu() * 2;
+    for (int k = 0; k <= 60; ++k) {
+      csv.row({k * 0.1, 0, tau * L * (1 + imbalance), 0, 0, 0, 0, 0});
+      csv.row({k * 0.1, 1, -tau * L, 0, 0, 0, 0, 0});
+    }
+  };
+  walls(2.5, 0.01);
+  for (const auto& k : check_sheared_suspension(dir, c, 10, 1.2, 6)) EXPECT_TRUE(k.pass) << k.quantity << ": " << k.shown;
+  EXPECT_NEAR(find(check_sheared_suspension(dir, c, 10, 1.2, 6), "relative viscosity").value, 2.5 * 1.005, 1e-6);
+  walls(1.0, 0.3);  // no thickening, and unbalanced
+  const auto bad = check_sheared_suspension(dir, c, 10, 1.2, 6);
+  EXPECT_FALSE(find(bad, "relative viscosity").pass);
+  EXPECT_FALSE(find(bad, "|F_top + F_bottom|").pass);
+  EXPECT_FALSE(find(check_sheared_suspension(dir, c, 20, 1.2, 6), "strain").pass) << "6 s at 2 1/s is 12";
+}
+
+TEST(RobustnessChecks, FluidOutsideTheDomainOrInsideABody) {
+  const fs::path dir = fresh_dir("robust_fluid");
+  const Case c = two_circles();
+  write_bodies(dir, 2, 0.1, 1, [](double, int b) { return Row{b == 0 ? 0.003 : 0.007, 0.005}; });
+  auto snapshot = [&](std::vector<Vec2> fluid) {
+    std::vector<std::int32_t> kind(fluid.size(), static_cast<std::int32_t>(Kind::Fluid));
+    io::write_vtp(dir / "s.vtp", fluid, {}, {io::VtkIntArray{"kind", 1, kind}});
+    io::PvdIndex pvd;
+    pvd.add(1.0, "s.vtp");
+    pvd.write(dir / "particles.pvd");
+  };
+  snapshot({{0.005, 0.005}, {0.003, 0.0059}});  // the second 0.9 mm from a centre: 0.1 mm = 1 d0 inside
+  auto bad = check_fluid_contained(dir, c);
+  EXPECT_TRUE(find(bad, "fluid particles outside").pass);
+  EXPECT_FALSE(find(bad, "fluid particles more than").pass);
+  snapshot({{0.005, -1e-5}, {0.003, 0.00597}});  // below the floor; 0.3 d0 inside a body is allowed
+  bad = check_fluid_contained(dir, c);
+  EXPECT_FALSE(find(bad, "fluid particles outside").pass);
+  EXPECT_TRUE(find(bad, "fluid particles more than").pass);
+}
+
+TEST(RobustnessChecks, GuardCountersAreReadWhateverTheirNames) {
+  const std::string json = R"({"steps": 12, "guard_events": {"singular_B": 3, "surface_guard": 17,
+    "nested": {"x": 1}, "note": "a \"string\"", "gap_fluid": null}, "after": 5})";
+  const auto g = io::json_object_numbers(json, "guard_events");
+  ASSERT_EQ(g.size(), 3u);
+  EXPECT_EQ(g[0].first, "singular_B");
+  EXPECT_EQ(g[1].first, "surface_guard");
+  EXPECT_EQ(g[1].second, 17);
+  EXPECT_TRUE(std::isnan(g[2].second));
+  EXPECT_THROW(io::json_object_numbers(json, "steps"), std::runtime_error);
+  EXPECT_THROW(io::json_object_numbers(json, "absent"), std::runtime_error);
+}
+
+// ---- the group --------------------------------------------------------------------------------
+
+TEST(RobustnessSuite, GroupHasTheIssueCasesAtTwoLevels) {
+  std::vector<std::string> names;
+  for (const auto& e : validation_entries()) {
+    if (e.group != ValidationGroup::Robustness) continue;
+    names.push_back(e.name);
+    SCOPED_TRACE(e.name);
+    const fs::path file = kSource / e.case_file;
+    const std::string text = cli_test::read_text(file);
+    EXPECT_EQ(text.rfind("# Robustness: ", 0), 0u) << "a header comment saying what the case is";
+    EXPECT_NE(text.find("# Checks: "), std::string::npos) << "and what it checks";
+    // default numerics: the case is about untuned settings (no such table)
+    EXPECT_EQ(text.find("\n[numerics]"), std::string::npos);
+    EXPECT_EQ(text.find("\n[collision]"), std::string::npos);
+    const Case coarse = load_case(file);
+    const Case fine = e.fine_overrides.empty() ? load_case(file, {fmt::format("resolution.d0={}", coarse.d0 / 2)})
+                                               : load_case(file, e.fine_overrides);
+    EXPECT_NEAR(fine.d0, coarse.d0 / 2, 1e-12);
+    EXPECT_EQ(fine.t_end, coarse.t_end);
+    // small enough for CI at the coarse level
+    const Scene s = build_scene(coarse);
+    EXPECT_LT(s.particles.size(), 8000u);
+  }
+  EXPECT_GE(names.size(), 10u);
+  for (const char* must : {"settling_pile", "mixed_shapes", "drop_rebound", "incline_slide", "cylinder_channel_re0p1",
+                           "cylinder_channel_re1", "cylinder_channel_re10", "cylinder_channel_re100",
+                           "sheared_suspension", "prescribed_squeeze"})
+    EXPECT_NE(std::find(names.begin(), names.end(), must), names.end()) << must;
+}
+
+TEST(RobustnessSuite, PileHasFiftyCirclesAndSuspensionIsDense) {
+  const Case pile = load_case(kSource / "cases/robustness/settling_pile.toml");
+  EXPECT_GE(pile.bodies.size(), 50u);
+  const Case s = load_case(kSource / "cases/robustness/sheared_suspension.toml");
+  double area = 0;
+  for (const auto& b : s.bodies) area += M_PI * b.radius * b.radius;
+  EXPECT_GE(area / ((s.domain_max.x - s.domain_min.x) * (s.domain_max.y - s.domain_min.y)), 0.3);
+}
+
+TEST(RobustnessSuite, SqueezeReachesATenthOfD0AtBothLevels) {
+  // Integrates the prescribed schedules (piecewise linear velocity) to the closest approach.
+  auto closest_gap = [](const Case& c) {
+    double x[2] = {c.bodies[0].center.x, c.bodies[1].center.x}, gap = 1;
+    for (double t = 0; t < c.t_end; t += 1e-4) {
+      for (int b = 0; b < 2; ++b) {
+        const auto& s = c.bodies[b].schedule;
+        const double tm = t + 0.5e-4;
+        double v = s.back().velocity.x;
+        for (std::size_t k = 0; k + 1 < s.size(); ++k)
+          if (tm >= s[k].t && tm < s[k + 1].t)
+            v = s[k].velocity.x + (s[k + 1].velocity.x - s[k].velocity.x) * (tm - s[k].t) / (s[k + 1].t - s[k].t);
+        x[b] += v * 1e-4;
+      }
+      gap = std::min(gap, x[1] - x[0] - c.bodies[0].radius - c.bodies[1].radius);
+    }
+    return gap / c.d0;
+  };
+  for (const auto& e : validation_entries()) {
+    if (e.name != "prescribed_squeeze") continue;
+    const fs::path file = kSource / e.case_file;
+    EXPECT_NEAR(closest_gap(load_case(file)), 0.1, 0.005);
+    EXPECT_NEAR(closest_gap(load_case(file, e.fine_overrides)), 0.1, 0.01);
+    return;
+  }
+  FAIL() << "no prescribed_squeeze entry";
+}
+
+TEST(RobustnessSuite, RobustnessRunsOnlyWhenAskedFor) {
+  ValidateOptions plain;
+  ValidateOptions group;
+  group.groups = {ValidationGroup::Robustness};
+  ValidateOptions named;
+  named.only = {"drop_rebound"};
+  for (const auto& e : validation_entries()) {
+    const bool robust = e.group == ValidationGroup::Robustness;
+    EXPECT_EQ(entry_selected(e, plain), !robust) << e.name;
+    EXPECT_EQ(entry_selected(e, group), robust) << e.name;
+    EXPECT_EQ(entry_selected(e, named), e.name == "drop_rebound") << e.name;
+  }
+}
+
+// ---- the coarse group itself (slow: excluded from `make test-sanitize`) -------------------------
+
+class RobustnessCases : public testing::TestWithParam<std::string> {};
+
+TEST_P(RobustnessCases, CoarseLevelFinishesAndPassesItsChecks) {
+  ValidateOptions opt;
+  opt.quick = true;
+  opt.only = {GetParam()};
+  opt.out_dir = fresh_dir("robustness_" + GetParam());
+  opt.threads = 1;
+  // validate prints the outcome (exit code, failure message, steps, guard counts) and each check
+  EXPECT_EQ(validate_command(opt), 0) << "see " << (opt.out_dir / "report.md").string();
+}
+
+std::vector<std::string> robustness_names() {
+  std::vector<std::string> names;
+  for (const auto& e : robustness_entries()) names.push_back(e.name);
+  return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(Coarse, RobustnessCases, testing::ValuesIn(robustness_names()),
+                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
