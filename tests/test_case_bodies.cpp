@@ -147,7 +147,9 @@ TEST(CaseBodies, PolygonEitherOrientationAndNonConvex) {
 TEST(CaseBodyRoundTrip, ResolvedCaseReadsBackIdentically) {
   const Case a = load(kCase);
   const std::string text = resolved_case_toml(a);
-  EXPECT_NE(text.find("\n[collision]\nstiffness = 1500000.0\nrange = 0.0003\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("\n[collision]\nmodel = \"spring_dashpot\"\nstiffness = 1500000.0\nrange = 0.0003\n"),
+            std::string::npos)
+      << text;
   // Only the keys of each body's shape and motion are written.
   EXPECT_NE(
       text.find(

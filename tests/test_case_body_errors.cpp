@@ -292,7 +292,8 @@ TEST(CaseBodyOverrides, Errors) {
                         "no element 4 in [[body]]: the case has 4");
   expect_override_error(kCase, {"body.0.radiu=1"}, "body[0].radiu", "did you mean 'body[0].radius'?");
   expect_override_error(kCase, {"body.0.center=[0.0195,0.01]"}, "body[0].center", "lies outside the domain");
-  expect_override_error(kCase, {"collision.stiffness=-1"}, "collision.stiffness", "must be >= 0 N/m^4");
+  expect_override_error(kCase, {"collision.stiffness=-1"}, "collision.stiffness",
+                        "must be >= 0 N/m^2; paper: N/m^4");
 }
 
 // ---------------------------------------------------------------------------------------------

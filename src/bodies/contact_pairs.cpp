@@ -8,8 +8,8 @@ namespace particula {
 namespace {
 
 /// The pair test shared by both searches (bitwise the same predicate).
-bool within_reach(const std::vector<Vec2>& pos, const std::vector<real>& bound, real range, const Domain& domain,
-                  std::size_t i, std::size_t j) {
+bool within_reach(const std::vector<Vec2>& pos, const std::vector<real>& bound, real range,
+                  const Domain& domain, std::size_t i, std::size_t j) {
   return !(norm(domain.separation(pos[i], pos[j])) > bound[i] + bound[j] + range);
 }
 
@@ -65,7 +65,8 @@ void contact_candidates(const std::vector<Vec2>& pos, const std::vector<real>& b
   for (std::size_t c = 0; c + 1 < start.size(); ++c) start[c + 1] += start[c];
   {
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) order[fill[static_cast<std::size_t>(cell[i])]++] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = 0; i < n; ++i)
+      order[fill[static_cast<std::size_t>(cell[i])]++] = static_cast<std::uint32_t>(i);
   }
   // Each body against the bodies of its own and the 8 neighbouring cells (wrapped along periodic
   // axes; with fewer than 3 cells there a cell can be visited twice, removed below).
