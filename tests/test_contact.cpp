@@ -250,6 +250,27 @@ TEST(ContactTorque, OffCentreContactTurnsTheBody) {
   EXPECT_LT(l.torque_a, 0.0);
 }
 
+TEST(ContactTorque, ADiscOnAWallFeelsNoTorqueFromTheNormalForce) {
+  // The sampled wall contact of a disc takes its lowest surface sample, up to half a spacing
+  // beside the bottom; the exact one takes the point below the centre, so the normal force of a
+  // resting disc has no torque, whatever its angle.
+  const real R = 1.25e-3;
+  const Shape c = Shape::circle(R);
+  const auto samples = c.sample_surface(2e-4);
+  for (real angle : {0.0, 0.03, 0.05, 1.0}) {
+    const PlacedBody disc{&c, &samples, {0.01, 0.001 + R}, angle};
+    const Contact sampled = wall_contact(disc, {0, 0.001}, {0.02, 0.001}, {0, 1});
+    const Contact exact = wall_contact_exact(disc, {0, 0.001}, {0.02, 0.001}, {0, 1});
+    EXPECT_NEAR(exact.gap, 0.0, 1e-15);
+    EXPECT_GE(sampled.gap, exact.gap - 1e-15);
+    EXPECT_DOUBLE_EQ(exact.point.x, 0.01);
+    EXPECT_EQ(cross(exact.point - disc.pos, exact.normal), 0.0);
+  }
+  // Beyond the segment's ends the wall does not act.
+  const PlacedBody off{&c, &samples, {0.03, 0.001 + R}, 0};
+  EXPECT_GT(wall_contact_exact(off, {0, 0.001}, {0.02, 0.001}, {0, 1}).gap, 1e299);
+}
+
 TEST(ContactTorque, FrictionOfASlidingDiscIsCoulombAndSpinsIt) {
   // A disc sliding to the right on a wall below: friction mu F_n to the left at the contact
   // point, and the torque R mu F_n that starts it rolling (clockwise, negative omega).

@@ -65,6 +65,20 @@ Contact wall_contact(const PlacedBody& a, Vec2 from, Vec2 to, Vec2 normal) {
   return best;
 }
 
+Contact wall_contact_exact(const PlacedBody& a, Vec2 from, Vec2 to, Vec2 normal) {
+  if (a.shape->kind() != ShapeKind::Circle) return wall_contact(a, from, to, normal);
+  Contact c;
+  const real R = a.shape->bounding_radius();
+  const Vec2 p = a.pos - R * normal;  // the point of the circle nearest the wall line
+  const Vec2 t = to - from;
+  const real u = dot(p - from, t) / norm2(t);
+  if (u < 0 || u > 1) return c;  // beyond the segment's ends the wall does not act
+  c.gap = dot(p - from, normal);
+  c.normal = normal;
+  c.point = p;
+  return c;
+}
+
 namespace {
 
 /// 1 / m_t: inverse of the mass that a tangential impulse at the contact point meets on one side

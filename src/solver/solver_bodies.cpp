@@ -202,7 +202,7 @@ std::optional<Failure> Solver::collisions() {
     if (!is_free(a)) continue;
     for (std::size_t w = 0; w < prm_.walls.size(); ++w) {
       const WallLine& wl = prm_.walls[w];
-      const Contact c = wall_contact(placed(prm_, groups_[a]), wl.from, wl.to, wl.normal);
+      const Contact c = wall_contact_exact(placed(prm_, groups_[a]), wl.from, wl.to, wl.normal);
       if (c.gap > 1e299) continue;
       if (c.gap < overlap_limit(prm_)) return overlap_failure(groups_[a], "wall '" + groups_[w].name + "'", c.gap);
       if (c.gap < reach) contacts_.push_back({a, w, c, 0});  // wall groups come first, in wall order

@@ -45,8 +45,15 @@ struct PlacedBody {
 Contact body_contact(const PlacedBody& a, const PlacedBody& b, const Domain& domain);
 
 /// Contact of a body with a straight wall segment whose fluid side is given by `normal`
-/// (normal points from the wall into the fluid, i.e. towards the body).
+/// (normal points from the wall into the fluid, i.e. towards the body), from the body's surface
+/// samples: the gap is resolved to the sampling (the paper's path).
 Contact wall_contact(const PlacedBody& a, Vec2 from, Vec2 to, Vec2 normal);
+
+/// The same, exact for a circle: the gap from its centre and the point straight below it, so
+/// that the normal force passes through the centre (a lowest sample beside the bottom would give
+/// a resting disc a spurious torque of up to F_n R sin(pi ds / 2 pi R)). Other shapes: as
+/// wall_contact.
+Contact wall_contact_exact(const PlacedBody& a, Vec2 from, Vec2 to, Vec2 normal);
 
 // ---------------------------------------------------------------------------------------------
 // The paper's repulsion (collision.model = "paper")
