@@ -46,7 +46,7 @@ TEST(ContactLaw, DerivedStiffnessStopsTheImpactAtTheLargestOverlap) {
   // updated as free_body_stage/free_body_update do) at dt = t_c / 20: a body hitting a wall at U
   // with k derived from U stops within delta_max (exactly delta_max without damping).
   const real m = 0.004, U = 0.05, delta_max = 1e-5;
-  for (real e : {1.0, 0.8, 0.5}) {
+  for (real e : {1.0, 0.8, 0.5, 0.2}) {
     const real k = derived_stiffness(m, U, delta_max);
     const real gamma = dashpot_coefficient(damping_ratio(e), m, k);
     const real dt = contact_duration(m, k) / kStepsPerContact;
@@ -61,7 +61,7 @@ TEST(ContactLaw, DerivedStiffnessStopsTheImpactAtTheLargestOverlap) {
     std::printf("e = %.1f: largest overlap %.4f delta_max, rebound %.4f U\n", e, deepest / delta_max,
                 -rate / U);
     EXPECT_LE(deepest, 1.005 * delta_max) << e;
-    EXPECT_GT(deepest, (e == 1.0 ? 0.99 : 0.6) * delta_max) << e;
+    EXPECT_GT(deepest, (e == 1.0 ? 0.99 : 0.4) * delta_max) << e;
     if (e >= 0.8) {
       EXPECT_NEAR(-rate / U, e, 0.03 * e) << e;
     }
