@@ -82,14 +82,23 @@ struct DryRun {
 
 /// A closed box with the given bodies, without its fluid and without viscosity: the bodies move
 /// only under the contact forces. Runs until the bodies have separated (or 4000 steps).
-DryRun dry_collision(std::vector<BodySpec> bodies, bool against_wall, real e) {
+Case dry_case(std::vector<BodySpec> bodies, real e) {
   Case c = cases::closed_box(0.02, 0.01, 2e-4);
   c.collision_restitution = e;
   c.bodies = std::move(bodies);
+  return c;
+}
+
+Solver dry_solver(const Case& c) {
   Scene sc = build_scene(c);
   sc.particles.resize(sc.particles.n_boundary);  // no fluid
   sc.params.nu = 0;                              // no viscous load, no lubrication
-  Solver s(sc.params, sc.domain, sc.particles, sc.groups);
+  return Solver(sc.params, sc.domain, sc.particles, sc.groups);
+}
+
+DryRun dry_collision(std::vector<BodySpec> bodies, bool against_wall, real e) {
+  const Case c = dry_case(std::move(bodies), e);
+  Solver s = dry_solver(c);
   const std::size_t a = c.walls.size();
   const real R = c.bodies[0].radius, delta_c = 0.5 * c.d0, delta_max = 0.1 * c.d0;
   auto gap = [&] {
@@ -128,6 +137,7 @@ DryRun dry_collision(std::vector<BodySpec> bodies, bool against_wall, real e) {
 
 BodySpec disc(Vec2 centre, Vec2 velocity) {
   BodySpec b;
+  b.name = "disc";
   b.shape = BodyShape::Circle;
   b.center = centre;
   b.radius = 1e-3;
@@ -164,6 +174,30 @@ TEST(DryCollision, HeadOnCollisionOfTwoBodiesReboundsWithTheRestitution) {
   EXPECT_LE(r.deepest, 1.02) << "the stiffness follows the relative impact speed";
   EXPECT_GT(r.deepest, 0.5);
   EXPECT_LE(r.smallest_dt, r.contact_dt_limit * (1 + 1e-9));
+}
+
+TEST(DryCollision, TooSoftAContactStopsTheRunNamingTheKey) {
+  // Overlap beyond 0.25 d0 is a failure (exit code 3) whose message says what to change.
+  const auto failure = [](Case c) -> std::string {
+    Solver s = dry_solver(c);
+    for (int n = 0; n < 4000; ++n)
+      if (const auto f = s.step()) return f->what;
+    return "";
+  };
+  // The disc's surface particles half a spacing off the wall's: the Courant step, which follows the
+  // smallest particle distance, then does not vanish as the disc reaches the wall.
+  Case soft = dry_case({disc({0.0185, 0.0051}, {0.05, 0})}, 0.95);
+  soft.collision_max_overlap = 1.0;  // delta_max = d0 > delta_c + 0.25 d0
+  const std::string derived = failure(soft);
+  EXPECT_NE(derived.find("body 'disc' overlaps wall 'right' by"), std::string::npos) << derived;
+  EXPECT_NE(derived.find("contact too soft for this impact speed: lower collision.max_overlap or set "
+                         "collision.stiffness"),
+            std::string::npos)
+      << derived;
+  Case given = dry_case({disc({0.0185, 0.0051}, {0.05, 0})}, 0.95);
+  given.collision_stiffness = 10;  // N/m^2: far too soft at 0.05 m/s
+  const std::string user = failure(given);
+  EXPECT_NE(user.find("raise collision.stiffness, or set it to 0 to derive it"), std::string::npos) << user;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -175,15 +175,19 @@ std::optional<Failure> Solver::collisions() {
     body_bound_.push_back(prm_.bodies[static_cast<std::size_t>(groups_[k].body)].shape.bounding_radius());
   }
   if (prm_.collision_model == ContactModel::Paper) return paper_collisions();
-
   const ContactLaw law = contact_law();
   // Imminent contacts (within one particle spacing of the contact distance) already limit the
   // step: no solid crosses d0 in one step at a Mach number below 1/2.
   const real imminent = law.delta_c + prm_.d0;
   const real reach = std::max(imminent, law.lubrication ? law.lub_range : 0.0);
-  const auto is_free = [&](std::size_t k) { return groups_[k].motion == Motion::Free; };
+  if (auto f = find_contacts(reach)) return f;
+  hold_contact_speeds(imminent);
+  contact_stiffness(imminent);
+  return std::nullopt;
+}
 
-  // Geometry: every pair within reach, body a free (the force law gives a the force).
+std::optional<Failure> Solver::find_contacts(real reach) {
+  const auto is_free = [&](std::size_t k) { return groups_[k].motion == Motion::Free; };
   contact_candidates(body_pos_, body_bound_, reach, domain_, body_pairs_);
   for (const BodyPair& p : body_pairs_) {
     std::size_t a = body_groups_[p.first], b = body_groups_[p.second];
@@ -192,7 +196,7 @@ std::optional<Failure> Solver::collisions() {
       return overlap_failure(groups_[a], "body '" + prm_.bodies[static_cast<std::size_t>(groups_[b].body)].name + "'",
                              c.gap);
     if (!(c.gap < reach) || (!is_free(a) && !is_free(b))) continue;
-    if (!is_free(a)) {
+    if (!is_free(a)) {  // the force law gives side a the force: make it the free one
       std::swap(a, b);
       c.normal = -c.normal;
     }
@@ -208,9 +212,10 @@ std::optional<Failure> Solver::collisions() {
       if (c.gap < reach) contacts_.push_back({a, w, c, 0});  // wall groups come first, in wall order
     }
   }
+  return std::nullopt;
+}
 
-  // Contact episodes: each body keeps the largest approach speed while it is near another solid,
-  // so that the stiffness of an impact does not drop as the impact slows the bodies down.
+void Solver::hold_contact_speeds(real imminent) {
   std::vector<real>& approach = contact_approach_;
   approach.assign(groups_.size(), -1);  // < 0: not near any solid
   for (const StepContact& sc : contacts_) {
@@ -218,27 +223,27 @@ std::optional<Failure> Solver::collisions() {
     const RigidGroup &ga = groups_[sc.a], &gb = groups_[sc.b];
     const Vec2 v = relative_velocity(contact_side(ga), contact_side(gb), domain_.separation(sc.c.point, ga.pos),
                                      domain_.separation(sc.c.point, gb.pos));
-    const real speed = std::max(0.0, -dot(v, sc.c.normal));
+    const real speed = std::max(0.0, -dot(v, sc.c.normal));  // relative normal approach speed
     approach[sc.a] = std::max(approach[sc.a], speed);
     if (!gb.is_wall) approach[sc.b] = std::max(approach[sc.b], speed);
   }
   for (const std::size_t k : body_groups_)
     groups_[k].contact_speed = approach[k] < 0 ? 0 : std::max(groups_[k].contact_speed, approach[k]);
+}
 
-  // Stiffness of each contact (the user's, or derived from the impact speed) and the step limit
-  // dt <= t_c / 20 of the active and imminent ones.
+void Solver::contact_stiffness(real imminent) {
   const real U_c = characteristic_impact_speed();
   const real delta_max = prm_.collision_max_overlap * prm_.d0;
   for (StepContact& sc : contacts_) {
     const RigidGroup &ga = groups_[sc.a], &gb = groups_[sc.b];
-    const real m_eff = effective_mass(ga.mass, is_free(sc.b) && !gb.is_wall ? gb.mass : 0.0);
+    const bool b_moves = gb.motion == Motion::Free && !gb.is_wall;
+    const real m_eff = effective_mass(ga.mass, b_moves ? gb.mass : 0.0);
     const real U = std::max({U_c, ga.contact_speed, gb.is_wall ? 0.0 : gb.contact_speed});
     sc.k = prm_.collision_stiffness > 0 ? prm_.collision_stiffness : derived_stiffness(m_eff, U, delta_max);
     if (!(sc.c.gap < imminent)) continue;
     const real dt_limit = contact_duration(m_eff, sc.k) / kStepsPerContact;
     contact_dt_ = contact_dt_ > 0 ? std::min(contact_dt_, dt_limit) : dt_limit;
   }
-  return std::nullopt;
 }
 
 void Solver::contact_forces(real dt) {

@@ -176,6 +176,16 @@ class Solver {
   /// interpenetrate, and computes the paper's forces, or for the spring-dashpot the stiffness
   /// of each contact and the time-step limit they impose (contact_dt_).
   std::optional<Failure> collisions();
+  /// Spring-dashpot contacts: every pair within `reach` with a free body (as side a), and the
+  /// free bodies' walls, into contacts_; a failure when solids interpenetrate.
+  std::optional<Failure> find_contacts(real reach);
+  /// Contact episodes: a body near another solid (gap below `imminent`) keeps the largest
+  /// approach speed of the episode (RigidGroup::contact_speed), so that the derived stiffness of
+  /// an impact does not drop as the impact slows the bodies down; 0 once it is clear.
+  void hold_contact_speeds(real imminent);
+  /// The stiffness of each contact (the user's, or derived from the impact speed) and the step
+  /// limit t_c / 20 of the active and imminent ones (contact_dt_).
+  void contact_stiffness(real imminent);
   /// Spring-dashpot forces and torques of the contacts found by collisions(), over the step dt.
   void contact_forces(real dt);
   /// The paper's P.38 repulsion on the candidate pairs (the code path of the paper's cases).
