@@ -595,6 +595,7 @@ void check_initial_contacts(const Case& c, const LoadContext& ctx) {
                                 body_text(c.bodies[k]), other, gap, limit, note, delta_c, source));
   };
   constexpr std::size_t kPoints = 2000;
+  const real tol = 1e-6 * c.d0;  // a gap of exactly delta_c, up to round-off, is not yet a contact
   const Vec2 span = c.domain_max - c.domain_min;
   std::vector<Vec2> shifts;
   for (int i = -1; i <= 1; ++i)
@@ -609,7 +610,7 @@ void check_initial_contacts(const Case& c, const LoadContext& ctx) {
     const real wall_limit = paper ? 0.5 * delta_c : delta_c;
     for (std::size_t w = 0; w < c.walls.size(); ++w) {
       const real gap = wall_gap(A, c.walls[w], kPoints);
-      if (gap < wall_limit)
+      if (gap < wall_limit - tol)
         fail(k, fmt::format("wall '{}' (wall[{}])", c.walls[w].name, w), gap, wall_limit,
              paper ? ", half the contact distance (P.38 meets a wall as the body's mirror image)" : "");
     }
@@ -619,7 +620,7 @@ void check_initial_contacts(const Case& c, const LoadContext& ctx) {
       for (const Vec2 shift : shifts) {
         if (norm(B.center + shift - A.center) >= A.bound + B.bound + delta_c) continue;
         const real gap = outline_gap(A, B, shift, kPoints);
-        if (gap < delta_c) fail(k, fmt::format("{} (body[{}])", body_text(*B.body), j), gap, delta_c, "");
+        if (gap < delta_c - tol) fail(k, fmt::format("{} (body[{}])", body_text(*B.body), j), gap, delta_c, "");
       }
     }
   }
