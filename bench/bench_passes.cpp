@@ -2,11 +2,14 @@
 // on the falling-cylinder case (paper 7.2). The resolution is the benchmark argument in
 // particles across the cylinder diameter (25 -> d0 = 1e-4 m, about 1.2e5 particles).
 // Items processed = particles, so the reported rate is particles (or particle-steps) per second.
+// Contact detection (BM_ContactCandidates*) runs on n random bodies instead; items = bodies.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
 
+#include "particula/bodies/contact_pairs.hpp"
 #include "particula/case/load.hpp"
 #include "particula/neighbors/neighbor_list.hpp"
 #include "particula/scene/scene.hpp"
@@ -106,6 +109,50 @@ void BM_Step(benchmark::State& state) {
   set_items(state, s);
 }
 
+/// n discs (R = 1 mm, bounding radii 0.5-1 mm) at random in a periodic box holding them at an
+/// area fraction of about 30 % (seeded: the same configuration every run).
+struct BodyCloud {
+  std::vector<Vec2> pos;
+  std::vector<real> bound;
+  Domain domain;
+};
+
+BodyCloud body_cloud(int n) {
+  BodyCloud c;
+  const real side = std::sqrt(n * M_PI * 1e-6 / 0.3);
+  c.domain = Domain{{0, 0}, {side, side}, true, true};
+  SplitMix64 rng(7);
+  for (int i = 0; i < n; ++i) {
+    c.pos.push_back({0.5 * side * (rng.symmetric() + 1), 0.5 * side * (rng.symmetric() + 1)});
+    c.bound.push_back(1e-3 * (0.75 + 0.25 * rng.symmetric()));
+  }
+  return c;
+}
+
+/// Contact candidates of one step: the cell list over the bodies (what the solver uses).
+void BM_ContactCandidates(benchmark::State& state) {
+  const BodyCloud c = body_cloud(static_cast<int>(state.range(0)));
+  std::vector<BodyPair> pairs;
+  for (auto _ : state) {
+    contact_candidates(c.pos, c.bound, 1e-4, c.domain, pairs);
+    benchmark::DoNotOptimize(pairs.data());
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+  state.counters["pairs"] = static_cast<double>(pairs.size());
+}
+
+/// The same by testing all pairs (the quadratic search the cell list replaces).
+void BM_ContactCandidatesAllPairs(benchmark::State& state) {
+  const BodyCloud c = body_cloud(static_cast<int>(state.range(0)));
+  std::vector<BodyPair> pairs;
+  for (auto _ : state) {
+    contact_candidates_all_pairs(c.pos, c.bound, 1e-4, c.domain, pairs);
+    benchmark::DoNotOptimize(pairs.data());
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+  state.counters["pairs"] = static_cast<double>(pairs.size());
+}
+
 // 10 and 25 particles across the cylinder: d0 = 2.5e-4 (about 2e4 particles) and 1e-4 (1.2e5).
 BENCHMARK(BM_NeighborList)->Arg(10)->Arg(25)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Geometry)->Arg(10)->Arg(25)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -114,5 +161,8 @@ BENCHMARK(BM_PressureGradient)->Arg(10)->Arg(25)->Unit(benchmark::kMillisecond)-
 BENCHMARK(BM_RhieChow)->Arg(10)->Arg(25)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_WallPressure)->Arg(10)->Arg(25)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Step)->Arg(10)->Arg(25)->Unit(benchmark::kMillisecond)->UseRealTime();
+// contact detection at 1000 (and 30) bodies
+BENCHMARK(BM_ContactCandidates)->Arg(30)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ContactCandidatesAllPairs)->Arg(30)->Arg(1000)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

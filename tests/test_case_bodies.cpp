@@ -122,10 +122,10 @@ shape = "polygon"
 vertices = [[0.011, 0.0465], [0.013, 0.0465], [0.013, 0.0485], [0.011, 0.0485]]
 density = 1000
 )"));
-  // Two circles that touch do not overlap.
+  // Two circles that touch do not overlap (fixed: a free body may not start in contact).
   EXPECT_NO_THROW(
-      load(kBase + "[[body]]\nshape = \"circle\"\ncenter = [0.005, 0.03]\nradius = 0.002\ndensity = 1\n"
-                   "[[body]]\nshape = \"circle\"\ncenter = [0.009, 0.03]\nradius = 0.002\ndensity = 1\n"));
+      load(kBase + "[[body]]\nshape = \"circle\"\ncenter = [0.005, 0.03]\nradius = 0.002\nmotion = \"fixed\"\n"
+                   "[[body]]\nshape = \"circle\"\ncenter = [0.009, 0.03]\nradius = 0.002\nmotion = \"fixed\"\n"));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -147,7 +147,9 @@ TEST(CaseBodies, PolygonEitherOrientationAndNonConvex) {
 TEST(CaseBodyRoundTrip, ResolvedCaseReadsBackIdentically) {
   const Case a = load(kCase);
   const std::string text = resolved_case_toml(a);
-  EXPECT_NE(text.find("\n[collision]\nstiffness = 1500000.0\nrange = 0.0003\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("\n[collision]\nmodel = \"spring_dashpot\"\nstiffness = 1500000.0\nrange = 0.0003\n"),
+            std::string::npos)
+      << text;
   // Only the keys of each body's shape and motion are written.
   EXPECT_NE(
       text.find(

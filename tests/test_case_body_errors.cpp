@@ -223,6 +223,42 @@ TEST(CaseBodyErrors, OverlapAcrossThePeriodicBoundary) {
       "body[0].center", "center = [0.01, 0.03]", "overlaps its own periodic image");
 }
 
+TEST(CaseBodyErrors, FreeBodyStartsInContact) {
+  // d0 = 1e-4: the spring-dashpot's contact distance is 0.5 d0 = 5e-5 m.
+  const std::string floor = kBase + "[[wall]]\nname = \"floor\"\nfrom = [0.0, 0.0]\nto = [0.02, 0.0]\n";
+  const auto disc = [](const std::string& centre) {
+    return "[[body]]\nshape = \"circle\"\ncenter = " + centre + "\nradius = 0.001\ndensity = 1100\n";
+  };
+  expect_error(floor + disc("[0.01, 0.00103]"), "body[0].center", "center = [0.01, 0.00103]",
+               "body 'body0' (circle) starts in contact with wall 'floor' (wall[0]): its gap at t = 0 is 3e-05 m, "
+               "below 5e-05 m (the contact distance delta_c = 5e-05 m: 0.5 d0, the default for collision.model "
+               "\"spring_dashpot\")");
+  EXPECT_NO_THROW(load(floor + disc("[0.01, 0.00106]")));
+  // A fixed body may sit on the wall.
+  EXPECT_NO_THROW(load(floor + "[[body]]\nshape = \"circle\"\ncenter = [0.01, 0.00103]\nradius = 0.001\n"
+                               "motion = \"fixed\"\n"));
+  // Given collision.range.
+  expect_error(floor + "[collision]\nrange = 2e-4\n" + disc("[0.01, 0.00115]"), "body[0].center",
+               "center = [0.01, 0.00115]", "delta_c = 0.0002 m: collision.range)");
+  // Sampled shapes: an ellipse's lowest point 2e-5 m above the floor.
+  expect_error(floor + "[[body]]\nshape = \"ellipse\"\ncenter = [0.01, 0.00102]\nsemi_axes = [0.002, 0.001]\n"
+                       "density = 1100\n",
+               "body[0].center", "center = [0.01, 0.00102]", "its gap at t = 0 is 2e-05 m");
+  // Two free bodies 4e-5 m apart, and across a periodic boundary.
+  expect_error(kBase + disc("[0.005, 0.03]") + disc("[0.00704, 0.03]"), "body[0].center", "center = [0.005, 0.03]",
+               "starts in contact with body 'body1' (circle) (body[1]): its gap at t = 0 is 4e-05 m");
+  const std::string periodic = with(kBase, "max = [0.02, 0.06]", "max = [0.02, 0.06]\nperiodic = [true, false]");
+  expect_error(periodic + disc("[0.00101, 0.03]") + disc("[0.01898, 0.03]"), "body[0].center",
+               "center = [0.00101, 0.03]", "starts in contact with body 'body1'");
+  // The paper's force meets a wall as the body's mirror image: half of its 3 d0 there; without a
+  // stiffness it is off and nothing starts in contact.
+  const std::string paper = floor + "[collision]\nmodel = \"paper\"\nstiffness = 1.5e6\n";
+  expect_error(paper + disc("[0.01, 0.00114]"), "body[0].center", "center = [0.01, 0.00114]",
+               "below 0.00015 m, half the contact distance (P.38 meets a wall as the body's mirror image)");
+  EXPECT_NO_THROW(load(paper + disc("[0.01, 0.00116]")));
+  EXPECT_NO_THROW(load(floor + "[collision]\nmodel = \"paper\"\n" + disc("[0.01, 0.00101]")));
+}
+
 TEST(CaseBodyErrors, BodyTooSmallForD0) {
   expect_error(
       with(kCase, "radius = 0.00125", "radius = 0.0004"), "body[0].radius", "radius = 0.0004",
@@ -292,7 +328,8 @@ TEST(CaseBodyOverrides, Errors) {
                         "no element 4 in [[body]]: the case has 4");
   expect_override_error(kCase, {"body.0.radiu=1"}, "body[0].radiu", "did you mean 'body[0].radius'?");
   expect_override_error(kCase, {"body.0.center=[0.0195,0.01]"}, "body[0].center", "lies outside the domain");
-  expect_override_error(kCase, {"collision.stiffness=-1"}, "collision.stiffness", "must be >= 0 N/m^4");
+  expect_override_error(kCase, {"collision.stiffness=-1"}, "collision.stiffness",
+                        "must be >= 0 N/m^2; paper: N/m^4");
 }
 
 // ---------------------------------------------------------------------------------------------

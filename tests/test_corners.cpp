@@ -119,7 +119,6 @@ Case sharp_body_case(std::vector<Vec2> vertices) {
   c.c = 1;
   c.shifting_beta = 0.02;
   c.gravity = {0, -9.81};
-  c.collision_stiffness = 1e7;
   BodySpec b;
   b.name = "sharp";
   b.shape = BodyShape::Polygon;

@@ -72,6 +72,39 @@ TEST(Resume, HalfRunResumedToTheEndIsBitwiseIdentical) {
   EXPECT_TRUE(read_text(dir / "full" / "checkpoint" / "state.bin") == read_text(dir / "half" / "checkpoint" / "state.bin"));
 }
 
+TEST(Resume, BodyInContactResumesBitwiseIdentical) {
+  // A cylinder landing on the floor with friction (spring-dashpot contact), the checkpoint taken
+  // while it is in contact: the contact episode's held approach speed (RigidGroup::contact_speed)
+  // and the collision torque travel with the checkpoint.
+  const fs::path dir = fresh_dir("resume_contact");
+  const fs::path cylinder = fs::path(PARTICULA_SOURCE_DIR) / "cases" / "falling_cylinder.toml";
+  const auto args = [&](const fs::path& out, const std::string& t_end) {
+    std::vector<std::string> a{"run", cylinder.string(), "--out", out.string(), "--quiet", "--no-plots",
+                               "--threads", "1", "--set", "time.end=" + t_end};
+    for (const char* s : {"resolution.d0=2e-4", "domain.max=[0.02,0.01]", "wall.1.to=[0.02,0.01]",
+                          "wall.2.from=[0.02,0.01]", "wall.2.to=[0.0,0.01]", "wall.3.from=[0.0,0.01]",
+                          "collision.model=spring_dashpot", "collision.stiffness=0", "collision.friction=0.3",
+                          "body.0.center=[0.01,0.00137]", "body.0.velocity=[0.01,-0.01]",
+                          "numerics.rhie_chow_factor=2", "output.interval=0.0005", "output.snapshots=false"}) {
+      a.push_back("--set");
+      a.push_back(s);
+    }
+    return a;
+  };
+  const auto full = cli(args(dir / "full", "0.011"));
+  ASSERT_EQ(full.code, 0) << full.output;
+  const auto half = cli(args(dir / "half", "0.008"));  // in contact from about t = 0.007 s
+  ASSERT_EQ(half.code, 0) << half.output;
+  const auto resumed = cli({"resume", (dir / "half").string(), "--set", "time.end=0.011", "--threads", "1",
+                            "--quiet", "--no-plots"});
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  const std::string bodies = read_text(dir / "full" / "bodies.csv");
+  EXPECT_NE(bodies.find("0.008,0,"), std::string::npos);
+  EXPECT_TRUE(bodies == read_text(dir / "half" / "bodies.csv"));
+  EXPECT_TRUE(read_text(dir / "full" / "checkpoint" / "state.bin") ==
+              read_text(dir / "half" / "checkpoint" / "state.bin"));
+}
+
 TEST(Resume, RunInterruptedBySigintResumesBitwiseIdentical) {
   const fs::path dir = fresh_dir("resume_sigint");
   const auto full = cli(couette(dir / "full", "1.5"));

@@ -21,6 +21,7 @@ Contact one_sided(const PlacedBody& a, const PlacedBody& b, const Domain& domain
     if (d < best.gap) {
       best.gap = d;
       best.normal = rotate(b.shape->closest_normal(local), cb, sb);
+      best.point = world;
     }
   }
   return best;
@@ -35,6 +36,7 @@ Contact body_contact(const PlacedBody& a, const PlacedBody& b, const Domain& dom
     Contact c;
     c.gap = d - a.shape->bounding_radius() - b.shape->bounding_radius();
     c.normal = d > 0 ? r / d : Vec2{0, 1};
+    c.point = a.pos - (a.shape->bounding_radius() + 0.5 * c.gap) * c.normal;  // middle of the gap
     return c;
   }
   const Contact ab = one_sided(a, b, domain);  // a's points in b: normal of b, points towards a
@@ -57,9 +59,68 @@ Contact wall_contact(const PlacedBody& a, Vec2 from, Vec2 to, Vec2 normal) {
     if (d < best.gap) {
       best.gap = d;
       best.normal = normal;
+      best.point = p;
     }
   }
   return best;
+}
+
+Contact wall_contact_exact(const PlacedBody& a, Vec2 from, Vec2 to, Vec2 normal) {
+  if (a.shape->kind() != ShapeKind::Circle) return wall_contact(a, from, to, normal);
+  Contact c;
+  const real R = a.shape->bounding_radius();
+  const Vec2 p = a.pos - R * normal;  // the point of the circle nearest the wall line
+  const Vec2 t = to - from;
+  const real u = dot(p - from, t) / norm2(t);
+  if (u < 0 || u > 1) return c;  // beyond the segment's ends the wall does not act
+  c.gap = dot(p - from, normal);
+  c.normal = normal;
+  c.point = p;
+  return c;
+}
+
+namespace {
+
+/// 1 / m_t: inverse of the mass that a tangential impulse at the contact point meets on one side
+/// (translation plus the rotation it causes), 0 for a side that forces do not move.
+real inverse_tangential_mass(const ContactSide& s, Vec2 r, Vec2 t_hat) {
+  if (!(s.mass > 0)) return 0;
+  const real arm = cross(r, t_hat);
+  return 1 / s.mass + (s.inertia > 0 ? arm * arm / s.inertia : 0);
+}
+
+}  // namespace
+
+ContactLoad spring_dashpot_load(const Contact& c, const ContactSide& a, const ContactSide& b, Vec2 r_a, Vec2 r_b,
+                                real k, const ContactLaw& law, real dt) {
+  ContactLoad out;
+  const Vec2 n = c.normal;
+  const Vec2 v_rel = relative_velocity(a, b, r_a, r_b);
+  const real v_n = dot(v_rel, n);  // < 0 when approaching
+  const real m_eff = effective_mass(a.mass, b.mass);
+  // Normal spring-dashpot on the mid-step overlap (see the header).
+  const real overlap = law.delta_c - c.gap, overlap_rate = -v_n;
+  const real gamma = dashpot_coefficient(law.zeta, m_eff, k);
+  out.normal = normal_force(k, gamma, overlap + 0.5 * dt * overlap_rate, overlap_rate);
+  // Friction: the viscous part gamma_t = m_t / (2 dt) would remove half of the sliding speed in
+  // one step (explicit-stable, as close to sticking as an explicit step allows); Coulomb caps it.
+  const Vec2 v_t = v_rel - v_n * n;
+  if (law.friction > 0 && out.normal > 0 && norm(v_t) > 0) {
+    const Vec2 t_hat = v_t / norm(v_t);
+    const real inv_mt = inverse_tangential_mass(a, r_a, t_hat) + inverse_tangential_mass(b, r_b, t_hat);
+    if (inv_mt > 0) out.friction = friction_force(v_t, law.friction, out.normal, 0.5 / (inv_mt * dt));
+  }
+  // Lubrication: the squeeze film below the resolution opposes the normal relative motion.
+  if (law.lubrication) {
+    const real R_star = reduced_radius(a.radius, b.radius);
+    const real c_lub =
+        lubrication_coefficient(law.viscosity, R_star, c.gap, law.lub_min_gap, law.lub_range, m_eff, dt);
+    out.lubrication = (-c_lub * v_n) * n;
+  }
+  out.force = out.normal * n + out.friction + out.lubrication;
+  out.torque_a = cross(r_a, out.force);
+  out.torque_b = -cross(r_b, out.force);
+  return out;
 }
 
 }  // namespace particula

@@ -3,7 +3,8 @@
 // Walls: on a domain edge with the fluid inside, not on a periodic boundary, no two on one
 // stretch, joined head to tail (no gaps below d0/2, at most two per point), clear of bodies.
 // Bodies: keys used by their shape or motion only, valid polygons, density of free bodies,
-// schedules, size against d0, inside the domain, no overlap at t = 0.
+// schedules, size against d0, inside the domain, no overlap at t = 0, no free body starting in
+// contact.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -573,7 +574,8 @@ real component(Vec2 v, int axis) { return axis == 0 ? v.x : v.y; }
 /// Distance from p to the segment [a, b].
 real segment_distance(Vec2 p, Vec2 a, Vec2 b) {
   const Vec2 ab = b - a;
-  const real s = std::clamp(dot(p - a, ab) / norm2(ab), 0.0, 1.0);
+  const real L2 = norm2(ab);
+  const real s = L2 > 0 ? std::clamp(dot(p - a, ab) / L2, 0.0, 1.0) : 0.0;
   return norm(p - (a + s * ab));
 }
 
@@ -856,6 +858,78 @@ void check_walls_clear_of_bodies(const Case& c, const LoadContext& ctx) {
   }
 }
 
+/// Gap between the outlines A and B (B moved by `shift`): exact for two circles, otherwise the
+/// smallest distance of A's boundary points to B's boundary polyline (0 when they overlap).
+real outline_gap(const Outline& A, const Outline& B, Vec2 shift, std::size_t points) {
+  if (A.body->shape == BodyShape::Circle && B.body->shape == BodyShape::Circle)
+    return norm(B.center + shift - A.center) - A.body->radius - B.body->radius;
+  const std::vector<Vec2> pa = A.boundary(points), pb = B.boundary(points);
+  real gap = std::numeric_limits<real>::infinity();
+  for (const Vec2 p : pa)
+    for (std::size_t i = 0; i < pb.size(); ++i)
+      gap = std::min(gap, segment_distance(p, pb[i] + shift, pb[(i + 1) % pb.size()] + shift));
+  return gap;
+}
+
+/// Gap between an outline and a wall segment: exact for a circle, otherwise from its boundary points.
+real wall_gap(const Outline& A, const WallSpec& w, std::size_t points) {
+  if (A.body->shape == BodyShape::Circle) return segment_distance(A.center, w.from, w.to) - A.body->radius;
+  real gap = std::numeric_limits<real>::infinity();
+  for (const Vec2 p : A.boundary(points)) gap = std::min(gap, segment_distance(p, w.from, w.to));
+  return gap;
+}
+
+/// A free body must not start in contact: at t = 0 its gap to every wall and to every other body
+/// must be at least the contact distance delta_c (collision.range, or its model's default); the
+/// paper's force meets a wall as the body's mirror image, so there half of it. A body that starts
+/// inside the contact distance is pushed off by the full contact force in the first step.
+void check_initial_contacts(const Case& c, const LoadContext& ctx) {
+  if (!c.contacts_active()) return;
+  const bool paper = c.collision_model == ContactModel::Paper;
+  const real delta_c = c.contact_distance();
+  const std::string model = paper ? "paper" : "spring_dashpot";
+  const std::string source =
+      c.collision_range > 0 ? "collision.range"
+                            : fmt::format("{} d0, the default for collision.model \"{}\"", paper ? 3 : 0.5, model);
+  const auto fail = [&](std::size_t k, const std::string& other, real gap, real limit, const char* note) {
+    throw ctx.error(place_key(c, k),
+                    fmt::format("{} starts in contact with {}: its gap at t = 0 is {:.3g} m, below {:.3g} m{} (the "
+                                "contact distance delta_c = {:.3g} m: {}); move it away or set a smaller "
+                                "collision.range",
+                                body_text(c.bodies[k]), other, gap, limit, note, delta_c, source));
+  };
+  constexpr std::size_t kPoints = 2000;
+  const real tol = 1e-6 * c.d0;  // a gap of exactly delta_c, up to round-off, is not yet a contact
+  const Vec2 span = c.domain_max - c.domain_min;
+  std::vector<Vec2> shifts;
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      if ((i == 0 || c.periodic_x) && (j == 0 || c.periodic_y)) shifts.push_back({i * span.x, j * span.y});
+  std::vector<Outline> outlines;
+  for (const BodySpec& b : c.bodies) outlines.emplace_back(b);
+  const auto is_free = [&](std::size_t k) { return c.bodies[k].motion == BodyMotion::Free; };
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    if (!is_free(k)) continue;
+    const Outline& A = outlines[k];
+    const real wall_limit = paper ? 0.5 * delta_c : delta_c;
+    for (std::size_t w = 0; w < c.walls.size(); ++w) {
+      const real gap = wall_gap(A, c.walls[w], kPoints);
+      if (gap < wall_limit - tol)
+        fail(k, fmt::format("wall '{}' (wall[{}])", c.walls[w].name, w), gap, wall_limit,
+             paper ? ", half the contact distance (P.38 meets a wall as the body's mirror image)" : "");
+    }
+    for (std::size_t j = 0; j < c.bodies.size(); ++j) {
+      if (j == k || (is_free(j) && j < k)) continue;  // a pair of free bodies once
+      const Outline& B = outlines[j];
+      for (const Vec2 shift : shifts) {
+        if (norm(B.center + shift - A.center) >= A.bound + B.bound + delta_c) continue;
+        const real gap = outline_gap(A, B, shift, kPoints);
+        if (gap < delta_c - tol) fail(k, fmt::format("{} (body[{}])", body_text(*B.body), j), gap, delta_c, "");
+      }
+    }
+  }
+}
+
 using CrossCheck = void (*)(const Case&, const LoadContext&);
 
 /// Run in this order (later checks may rely on earlier ones, e.g. walls on a valid domain, the
@@ -865,7 +939,8 @@ constexpr CrossCheck kChecks[] = {check_domain,           check_periodic_width, 
                                   check_wall_gaps, check_wall_joints, check_wall_chains,
                                   check_unused_keys,      check_polygons,       check_density,
                                   check_schedules,        check_fixed_bodies,   check_body_sizes,
-                                  check_bodies_in_domain, check_body_overlap, check_walls_clear_of_bodies};
+                                  check_bodies_in_domain, check_body_overlap,   check_walls_clear_of_bodies,
+                                  check_initial_contacts};
 
 }  // namespace
 

@@ -95,7 +95,8 @@ end = 2.0
 interval = 0.01
 
 [collision]
-stiffness = 1.5e6
+model = "spring_dashpot"  # the default: the stiffness is derived, nothing to tune
+friction = 0.3
 
 [[wall]]
 from = [0.0, 0.0]

@@ -370,13 +370,41 @@ std::vector<KeySpec> make_schema() {
                  "domain.max.y).",
                  &Case::exact),
       // [collision]
-      real_key("collision.stiffness", "N/m^4", def(0.0, "0 (no repulsion)"), ge(0),
-               "Stiffness k of the solid-solid repulsion of P.38 (force per unit depth), between two bodies "
-               "and between a body and its mirror image in a wall.",
+      choice_key("collision.model", {"spring_dashpot", "paper"}, def(std::string{"spring_dashpot"}),
+                 "Contact law between solids: a linear spring and dashpot whose stiffness is derived from the "
+                 "impact speed (no tuning), with damping from collision.restitution, optional friction and a "
+                 "lubrication correction, or the paper's repulsion P.38 (needs collision.stiffness); see "
+                 "docs/method-notes.md, Contacts.",
+                 &Case::collision_model),
+      real_key("collision.stiffness", "N/m^2; paper: N/m^4",
+               def(0.0, "0 (spring_dashpot: derived; paper: no repulsion)"), ge(0),
+               "spring_dashpot: normal stiffness k_n, force per unit depth per metre of overlap (0 = derived "
+               "from the impact speed and collision.max_overlap); paper: k of P.38, between two bodies and "
+               "between a body and its mirror image in a wall.",
                field(&Case::collision_stiffness)),
-      real_key("collision.range", "m", def(0.0, "0 (= 3 d0)"), ge(0),
-               "Range eps of the repulsion: it acts where the gap between two surfaces is below eps.",
+      real_key("collision.range", "m", def(0.0, "0 (spring_dashpot: 0.5 d0; paper: 3 d0)"), ge(0),
+               "Contact distance delta_c (the paper's eps): solids are in contact where the gap between "
+               "their surfaces is below it.",
                field(&Case::collision_range)),
+      real_key("collision.restitution", "-", def(0.8), open_closed(0, 1),
+               "spring_dashpot: coefficient of restitution e of a dry normal impact, which sets the dashpot "
+               "(below about 0.7 the rebound is somewhat livelier, since the force never pulls).",
+               field(&Case::collision_restitution)),
+      real_key("collision.friction", "-", def(0.0), ge(0),
+               "spring_dashpot: Coulomb friction coefficient between solids (history-free, regularized).",
+               field(&Case::collision_friction)),
+      real_key("collision.max_overlap", "-", def(0.1), open_closed(0, 1),
+               "spring_dashpot: overlap reached at the characteristic impact speed, as a fraction of d0; it "
+               "sets the derived stiffness (smaller = stiffer contact and smaller time step).",
+               field(&Case::collision_max_overlap)),
+      bool_key("collision.lubrication", def(true),
+               "spring_dashpot: add the analytic squeeze-film force between solids closer than "
+               "collision.lubrication_range, which the particles cannot resolve (the fluid always has a "
+               "viscosity, hence on by default).",
+               field(&Case::collision_lubrication)),
+      real_key("collision.lubrication_range", "m", def(0.0, "0 (= 2 d0)"), ge(0),
+               "spring_dashpot: gap below which the lubrication correction acts.",
+               field(&Case::collision_lubrication_range)),
       // [[wall]]
       string_key("wall[].name", per_index(wall_name, "wall<k> (k = index from 0)"),
                  "Name of the wall in output and messages.", member(W, &WallSpec::name), /*name=*/true),
@@ -478,8 +506,9 @@ std::vector<SectionSpec> make_sections() {
       table_section("guard", "Bounds that stop a run that is blowing up."),
       table_section("validation", "Comparison with an exact solution."),
       table_section("collision",
-                    "Repulsion that keeps bodies apart from each other and from walls (P.38, generalised to "
-                    "the closest-surface distance)."),
+                    "Contacts between bodies and between bodies and walls: a spring-dashpot law that needs no "
+                    "tuning (default), or the paper's repulsion P.38 generalised to the closest-surface "
+                    "distance."),
       array_section("wall", &Case::walls,
                     "Straight wall segments, one [[wall]] table each; list a closed box counter-clockwise. Checked at "
                     "load: a wall on an edge of the domain has the fluid (its left side) inside; walls that meet "

@@ -21,7 +21,7 @@ static_assert(checkpoint_detail::aggregate_field_count<SolverCounters>() == kSol
               "SolverCounters changed: update solver_counters_fields() and kSolverCountersFields");
 static_assert(sizeof(Particles) == sizeof(std::size_t) + (kParticlesFields - 1) * sizeof(std::vector<real>),
               "Particles changed: update particles_fields() and kParticlesFields in run/checkpoint.hpp");
-static_assert(sizeof(RigidGroup) == 264,
+static_assert(sizeof(RigidGroup) == 280,
               "RigidGroup changed: update rigid_group_fields(), kRigidGroupFields and this size "
               "(run/checkpoint.hpp), then bump kCheckpointVersion");
 static_assert(sizeof(SolverCounters) == kSolverCountersFields * sizeof(std::int64_t),

@@ -345,8 +345,8 @@ std::vector<ValidationCheck> check_dkt(const fs::path& run_dir, const Case& cs) 
   const BodyHistory lo = body_history(run_dir, 0), up = body_history(run_dir, 1);
   const std::size_t n = std::min(lo.size(), up.size());
   const double R = cs.bodies.at(0).radius;
-  // in contact: within the range of the P.38 repulsive force (eps; 3 d0 when not given)
-  const double eps = cs.collision_range > 0 ? cs.collision_range : 3 * cs.d0;
+  // in contact: within the contact distance (the paper's eps of P.38, 3 d0 when not given)
+  const double eps = cs.contact_distance();
   std::vector<ValidationCheck> out;
   // drafting: the trailing (upper) cylinder falls faster than the leading one
   double t_draft = std::nan(""), t_kiss = std::nan(""), t_tumble = std::nan(""), min_gap = 1e30, t_min_gap = 0;

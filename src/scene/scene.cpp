@@ -36,8 +36,14 @@ PhysicsParams physics_params(const Case& c) {
   p.wall_pressure_sweeps = c.wall_pressure_sweeps;
   p.rho_min_ratio = c.rho_min_ratio;
   p.rho_max_ratio = c.rho_max_ratio;
+  p.collision_model = c.collision_model;
   p.collision_stiffness = c.collision_stiffness;
   p.collision_range = c.collision_range;
+  p.collision_restitution = c.collision_restitution;
+  p.collision_friction = c.collision_friction;
+  p.collision_max_overlap = c.collision_max_overlap;
+  p.collision_lubrication = c.collision_lubrication;
+  p.collision_lubrication_range = c.collision_lubrication_range;
   for (const auto& w : c.walls) {
     const Vec2 t = (w.to - w.from) / norm(w.to - w.from);
     p.walls.push_back({w.from, w.to, {-t.y, t.x}});

@@ -299,6 +299,7 @@ real Solver::stable_dt() const {
   real dt = prm_.cfl * dmin / (prm_.c + vmax);  // P.30: Courant condition
   if (prm_.nu > 0) dt = std::min(dt, prm_.cfl * dmin * dmin / prm_.nu);  // P.31: viscous diffusion
   if (prm_.dt_max > 0) dt = std::min(dt, prm_.dt_max);
+  if (contact_dt_ > 0) dt = std::min(dt, contact_dt_);  // t_c / 20 of the contacts (collisions())
   return dt;
 }
 
@@ -329,6 +330,10 @@ std::optional<Failure> Solver::step(real dt_cap) {
     if (dt_cap > 0) dt_ = std::min(dt_, dt_cap);
   }
   const real dt = dt_;
+  {
+    PhaseTimer timer(times_.bodies);
+    contact_forces(dt);
+  }
   const StageParams sp = stage_params(dt);
 
   save_stage_start(StageStart::StepStart);

@@ -1,5 +1,6 @@
 // The rigid-body side of Solver: group poses and motions, surface placement and kinematics,
-// loads (P.26-P.27), the body stages of the predictor-corrector and the P.38 contacts.
+// loads (P.26-P.27), the body stages of the predictor-corrector and the contacts.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -87,7 +88,7 @@ void Solver::body_stage(real dt, real t_stage_end, const std::vector<Vec2>& v0, 
     if (g.motion == Motion::Free) {
       const Vec2 weight = body_weight(g.mass, g.area, prm_.rho0, prm_.gravity, prm_.gravity_in_fluid);
       const Vec2 force = g.force_pressure + g.force_viscous + g.force_collision + weight;
-      free_body_stage(g, v0[k], omega0[k], force, g.torque, dt);
+      free_body_stage(g, v0[k], omega0[k], force, g.torque + g.torque_collision, dt);
     } else if (g.motion == Motion::Prescribed && g.body >= 0) {
       const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
       const PrescribedState st = prescribed_state(b.schedule, b.velocity, b.omega, t_stage_end);
@@ -124,40 +125,203 @@ void Solver::body_update(real dt, real t_new) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Contacts (bodies/collision.hpp; docs/method-notes.md, Contacts)
+
+namespace {
+
+PlacedBody placed(const PhysicsParams& prm, const RigidGroup& g) {
+  const BodyParams& b = prm.bodies[static_cast<std::size_t>(g.body)];
+  return PlacedBody{&b.shape, &b.samples, g.pos, g.angle};
+}
+
+/// Solids that overlap by more than this are a failure (beyond the sampling noise of the gap).
+real overlap_limit(const PhysicsParams& prm) { return -0.25 * prm.d0; }
+
+}  // namespace
+
+Failure Solver::overlap_failure(const RigidGroup& a, const std::string& other, real gap) const {
+  const char* cause =
+      prm_.collision_model == ContactModel::Paper
+          ? "the P.38 repulsion did not keep them apart: raise collision.stiffness (or collision.range), or use "
+            "collision.model = \"spring_dashpot\""
+      : prm_.collision_stiffness > 0
+          ? "contact too soft for this impact speed: raise collision.stiffness, or set it to 0 to derive it"
+          : "contact too soft for this impact speed: lower collision.max_overlap or set collision.stiffness";
+  Failure f;
+  char buf[640];
+  std::snprintf(buf, sizeof buf, "body '%s' overlaps %s by %.3g m (%.2f d0): %s",
+                prm_.bodies[static_cast<std::size_t>(a.body)].name.c_str(), other.c_str(), -gap, -gap / prm_.d0,
+                cause);
+  f.what = buf;
+  f.position = a.pos;
+  return f;
+}
+
 std::optional<Failure> Solver::collisions() {
-  for (auto& g : groups_) g.force_collision = Vec2{};
+  for (auto& g : groups_) {
+    g.force_collision = Vec2{};
+    g.torque_collision = 0;
+  }
+  contacts_.clear();
+  contact_dt_ = 0;
+  body_groups_.clear();
+  body_pos_.clear();
+  body_bound_.clear();
+  for (std::size_t k = 0; k < groups_.size(); ++k) {
+    if (groups_[k].is_wall) continue;
+    body_groups_.push_back(k);
+    body_pos_.push_back(groups_[k].pos);
+    body_bound_.push_back(prm_.bodies[static_cast<std::size_t>(groups_[k].body)].shape.bounding_radius());
+  }
+  if (prm_.collision_model == ContactModel::Paper) return paper_collisions();
+  const ContactLaw law = contact_law();
+  // Imminent contacts (within one particle spacing of the contact distance) already limit the
+  // step: no solid crosses d0 in one step at a Mach number below 1/2.
+  const real imminent = law.delta_c + prm_.d0;
+  const real reach = std::max(imminent, law.lubrication ? law.lub_range : 0.0);
+  if (auto f = find_contacts(reach)) return f;
+  hold_contact_speeds(imminent);
+  contact_stiffness(imminent);
+  return std::nullopt;
+}
+
+std::optional<Failure> Solver::find_contacts(real reach) {
+  const auto is_free = [&](std::size_t k) { return groups_[k].motion == Motion::Free; };
+  contact_candidates(body_pos_, body_bound_, reach, domain_, body_pairs_);
+  for (const BodyPair& p : body_pairs_) {
+    std::size_t a = body_groups_[p.first], b = body_groups_[p.second];
+    Contact c = body_contact(placed(prm_, groups_[a]), placed(prm_, groups_[b]), domain_);
+    if (c.gap < overlap_limit(prm_))
+      return overlap_failure(groups_[a], "body '" + prm_.bodies[static_cast<std::size_t>(groups_[b].body)].name + "'",
+                             c.gap);
+    if (!(c.gap < reach) || (!is_free(a) && !is_free(b))) continue;
+    if (!is_free(a)) {  // the force law gives side a the force: make it the free one
+      std::swap(a, b);
+      c.normal = -c.normal;
+    }
+    contacts_.push_back({a, b, c, 0});
+  }
+  for (const std::size_t a : body_groups_) {
+    if (!is_free(a)) continue;
+    for (std::size_t w = 0; w < prm_.walls.size(); ++w) {
+      const WallLine& wl = prm_.walls[w];
+      const Contact c = wall_contact_exact(placed(prm_, groups_[a]), wl.from, wl.to, wl.normal);
+      if (c.gap > 1e299) continue;
+      if (c.gap < overlap_limit(prm_)) return overlap_failure(groups_[a], "wall '" + groups_[w].name + "'", c.gap);
+      if (c.gap < reach) contacts_.push_back({a, w, c, 0});  // wall groups come first, in wall order
+    }
+  }
+  return std::nullopt;
+}
+
+void Solver::hold_contact_speeds(real imminent) {
+  std::vector<real>& approach = contact_approach_;
+  approach.assign(groups_.size(), -1);  // < 0: not near any solid
+  for (const StepContact& sc : contacts_) {
+    if (!(sc.c.gap < imminent)) continue;
+    const RigidGroup &ga = groups_[sc.a], &gb = groups_[sc.b];
+    const Vec2 v = relative_velocity(contact_side(ga), contact_side(gb), domain_.separation(sc.c.point, ga.pos),
+                                     domain_.separation(sc.c.point, gb.pos));
+    const real speed = std::max(0.0, -dot(v, sc.c.normal));  // relative normal approach speed
+    approach[sc.a] = std::max(approach[sc.a], speed);
+    if (!gb.is_wall) approach[sc.b] = std::max(approach[sc.b], speed);
+  }
+  for (const std::size_t k : body_groups_)
+    groups_[k].contact_speed = approach[k] < 0 ? 0 : std::max(groups_[k].contact_speed, approach[k]);
+}
+
+void Solver::contact_stiffness(real imminent) {
+  const real U_c = characteristic_impact_speed();
+  const real delta_max = prm_.collision_max_overlap * prm_.d0;
+  for (StepContact& sc : contacts_) {
+    const RigidGroup &ga = groups_[sc.a], &gb = groups_[sc.b];
+    const bool b_moves = gb.motion == Motion::Free && !gb.is_wall;
+    const real m_eff = effective_mass(ga.mass, b_moves ? gb.mass : 0.0);
+    const real U = std::max({U_c, ga.contact_speed, gb.is_wall ? 0.0 : gb.contact_speed});
+    sc.k = prm_.collision_stiffness > 0 ? prm_.collision_stiffness : derived_stiffness(m_eff, U, delta_max);
+    if (!(sc.c.gap < imminent)) continue;
+    const real dt_limit = contact_duration(m_eff, sc.k) / kStepsPerContact;
+    contact_dt_ = contact_dt_ > 0 ? std::min(contact_dt_, dt_limit) : dt_limit;
+  }
+}
+
+void Solver::contact_forces(real dt) {
+  if (contacts_.empty()) return;
+  const ContactLaw law = contact_law();
+  for (const StepContact& sc : contacts_) {
+    RigidGroup &ga = groups_[sc.a], &gb = groups_[sc.b];
+    const ContactLoad load =
+        spring_dashpot_load(sc.c, contact_side(ga), contact_side(gb), domain_.separation(sc.c.point, ga.pos),
+                            domain_.separation(sc.c.point, gb.pos), sc.k, law, dt);
+    ga.force_collision += load.force;
+    ga.torque_collision += load.torque_a;
+    if (gb.is_wall) continue;
+    gb.force_collision -= load.force;  // reaction (used when b is free; reported for fixed bodies)
+    gb.torque_collision += load.torque_b;
+  }
+}
+
+real Solver::characteristic_impact_speed() const {
+  real U = 1e-3 * prm_.c;  // floor: a speed the explicit step always resolves
+  const real g = norm(prm_.gravity);
+  for (const RigidGroup& grp : groups_) {
+    if (grp.motion == Motion::Fixed) continue;
+    const Shape* shape = grp.is_wall ? nullptr : &prm_.bodies[static_cast<std::size_t>(grp.body)].shape;
+    // the current speed of every moving solid (free and prescribed bodies, sliding walls)
+    U = std::max(U, norm(grp.vel) + std::fabs(grp.omega) * (shape ? shape->bounding_radius() : 0.0));
+    // a free body falling its own size under its reduced weight: sqrt(2 g' L), g' = g |1 - rho_f/rho_s|
+    if (grp.motion == Motion::Free && shape && grp.mass > 0 && grp.area > 0) {
+      const real reduced_g = g * std::fabs(1 - prm_.rho0 * grp.area / grp.mass);
+      U = std::max(U, std::sqrt(2 * reduced_g * 2 * shape->equivalent_radius()));
+    }
+  }
+  return U;
+}
+
+ContactLaw Solver::contact_law() const {
+  ContactLaw law;
+  law.delta_c = prm_.collision_range > 0 ? prm_.collision_range : 0.5 * prm_.d0;
+  law.zeta = damping_ratio(prm_.collision_restitution);
+  law.friction = prm_.collision_friction;
+  law.viscosity = prm_.nu * prm_.rho0;
+  law.lubrication = prm_.collision_lubrication && law.viscosity > 0;
+  law.lub_range = prm_.collision_lubrication_range > 0 ? prm_.collision_lubrication_range : 2 * prm_.d0;
+  law.lub_min_gap = 0.1 * prm_.d0;
+  return law;
+}
+
+ContactSide Solver::contact_side(const RigidGroup& g) const {
+  ContactSide s;
+  s.pos = g.pos;
+  s.vel = g.vel;
+  s.omega = g.omega;
+  if (g.motion == Motion::Free && !g.is_wall) {
+    s.mass = g.mass;
+    s.inertia = g.inertia;
+  }
+  if (!g.is_wall) s.radius = prm_.bodies[static_cast<std::size_t>(g.body)].shape.equivalent_radius();
+  return s;
+}
+
+std::optional<Failure> Solver::paper_collisions() {
   const real eps = prm_.collision_range > 0 ? prm_.collision_range : 3 * prm_.d0;
   const real k = prm_.collision_stiffness;
-  const real overlap_limit = -0.25 * prm_.d0;  // interpenetration beyond sampling noise
-  auto placed = [&](const RigidGroup& g) {
-    const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
-    return PlacedBody{&b.shape, &b.samples, g.pos, g.angle};
-  };
-  auto overlap = [&](const std::string& a, const std::string& b, real gap, Vec2 where) {
-    Failure f;
-    char buf[512];
-    std::snprintf(buf, sizeof buf, "body '%s' overlaps %s by %.3g m (%.2f d0): the collision force did not keep them apart",
-                  a.c_str(), b.c_str(), -gap, -gap / prm_.d0);
-    f.what = buf;
-    f.position = where;
-    return f;
-  };
-  for (std::size_t a = 0; a < groups_.size(); ++a) {
-    RigidGroup& ga = groups_[a];
-    if (ga.is_wall) continue;
-    const PlacedBody pa = placed(ga);
-    const real Ra = prm_.bodies[static_cast<std::size_t>(ga.body)].shape.equivalent_radius();
-    // bodies
-    for (std::size_t b = a + 1; b < groups_.size(); ++b) {
-      RigidGroup& gb = groups_[b];
-      if (gb.is_wall) continue;
-      const PlacedBody pb = placed(gb);
-      if (norm(domain_.separation(ga.pos, gb.pos)) > pa.shape->bounding_radius() + pb.shape->bounding_radius() + eps)
-        continue;
+  // The candidate pairs in (a, b) order, then each body's walls after its pairs: the order in
+  // which the forces were always summed, so the paper's cases are unchanged bit for bit.
+  contact_candidates(body_pos_, body_bound_, eps, domain_, body_pairs_);
+  std::size_t p = 0;
+  for (std::size_t ia = 0; ia < body_groups_.size(); ++ia) {
+    RigidGroup& ga = groups_[body_groups_[ia]];
+    const PlacedBody pa = placed(prm_, ga);
+    const real Ra = pa.shape->equivalent_radius();
+    for (; p < body_pairs_.size() && body_pairs_[p].first == ia; ++p) {
+      RigidGroup& gb = groups_[body_groups_[body_pairs_[p].second]];
+      const PlacedBody pb = placed(prm_, gb);
       const Contact c = body_contact(pa, pb, domain_);
-      if (c.gap < overlap_limit) return overlap(prm_.bodies[ga.body].name, "body '" + prm_.bodies[gb.body].name + "'", c.gap, ga.pos);
-      const real Rb = pb.shape->equivalent_radius();
-      const Vec2 F = repulsive_force(c, Ra, Rb, k, eps);
+      if (c.gap < overlap_limit(prm_))
+        return overlap_failure(ga, "body '" + prm_.bodies[static_cast<std::size_t>(gb.body)].name + "'", c.gap);
+      const Vec2 F = repulsive_force(c, Ra, pb.shape->equivalent_radius(), k, eps);
       ga.force_collision += F;
       gb.force_collision -= F;
     }
@@ -165,8 +329,7 @@ std::optional<Failure> Solver::collisions() {
     for (const auto& w : prm_.walls) {
       Contact c = wall_contact(pa, w.from, w.to, w.normal);
       if (c.gap > 1e299) continue;
-      if (c.gap < overlap_limit && ga.motion == Motion::Free)
-        return overlap(prm_.bodies[ga.body].name, "a wall", c.gap, ga.pos);
+      if (c.gap < overlap_limit(prm_) && ga.motion == Motion::Free) return overlap_failure(ga, "a wall", c.gap);
       c.gap *= 2;
       ga.force_collision += repulsive_force(c, Ra, Ra, k, eps);
     }

@@ -18,6 +18,8 @@ enum class NormalModel { Kernel, Analytic };
 enum class InitialFlow { Rest, TaylorGreen, Couette };
 /// Exact solution a case is compared with (probes get a vx_exact column, summary.json the error).
 enum class ExactSolution { None, Couette, Poiseuille };
+/// Solid-solid contact law (docs/method-notes.md, "Contacts").
+enum class ContactModel { SpringDashpot, Paper };
 
 /// A straight wall segment. The fluid lies on its LEFT when walking from `from` to `to`
 /// (so a closed box is listed counter-clockwise). It may slide along itself at `velocity`.
@@ -121,9 +123,15 @@ struct Case {
   // [validation]
   ExactSolution exact = ExactSolution::None;
 
-  // [collision] (P.38 generalized)
-  real collision_stiffness = 0;  // k; 0 disables the repulsive force
-  real collision_range = 0;      // eps in m; 0 = 3 d0
+  // [collision]
+  ContactModel collision_model = ContactModel::SpringDashpot;
+  real collision_stiffness = 0;  // spring_dashpot: k_n (N/m^2), 0 = derived; paper: k of P.38, 0 = off
+  real collision_range = 0;      // contact distance delta_c (m); 0 = 0.5 d0 (spring_dashpot), 3 d0 (paper)
+  real collision_restitution = 0.8;       // e of a dry impact (spring_dashpot)
+  real collision_friction = 0;            // Coulomb coefficient mu (spring_dashpot)
+  real collision_max_overlap = 0.1;       // delta_max / d0 of the derived stiffness
+  bool collision_lubrication = true;      // squeeze-film correction below the resolution
+  real collision_lubrication_range = 0;   // g_range (m); 0 = 2 d0
 
   std::vector<WallSpec> walls;
   std::vector<ProbeSpec> probes;
@@ -131,6 +139,13 @@ struct Case {
 
   real h() const { return h_over_d0 * d0; }
   real mu() const { return nu * rho0; }
+  /// The gap below which solids are in contact: collision.range, or its model's default.
+  real contact_distance() const {
+    if (collision_range > 0) return collision_range;
+    return collision_model == ContactModel::Paper ? 3 * d0 : 0.5 * d0;
+  }
+  /// Whether solids interact at all (the paper's force is off without a stiffness).
+  bool contacts_active() const { return collision_model != ContactModel::Paper || collision_stiffness > 0; }
 };
 
 }  // namespace particula

@@ -28,7 +28,7 @@
 namespace particula {
 
 /// Bump when the layout or any field list below changes; older files are then refused.
-inline constexpr std::uint32_t kCheckpointVersion = 4;
+inline constexpr std::uint32_t kCheckpointVersion = 5;
 
 /// When an output stream ("bodies", "snapshots", "probe:<name>") was last written on its
 /// regular schedule. A resumed run drops rows after this time (the extra final-state rows of an
@@ -81,7 +81,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file);
 // static_asserts in src/run/checkpoint.cpp fail until you do.
 
 inline constexpr std::size_t kParticlesFields = 15;  // n_boundary + 14 arrays
-inline constexpr std::size_t kRigidGroupFields = 23;
+inline constexpr std::size_t kRigidGroupFields = 25;
 inline constexpr std::size_t kSolverCountersFields = 7;
 
 template <class Ar, class P>
@@ -128,6 +128,8 @@ void rigid_group_fields(Ar& ar, G& g) {
   ar(g.force_viscous);
   ar(g.force_collision);
   ar(g.torque);
+  ar(g.torque_collision);
+  ar(g.contact_speed);
   ar(g.vel_n);
   ar(g.omega_n);
 }

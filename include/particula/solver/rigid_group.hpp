@@ -31,9 +31,15 @@ struct RigidGroup {
   real mass = 0, inertia = 0, area = 0;
 
   // hydrodynamic loads of the last evaluation (P.26-P.27), split by origin, and the
-  // collision force (P.38) of the step
+  // contact force and its torque of the step (bodies/collision.hpp)
   Vec2 force_pressure, force_viscous, force_collision;
   real torque = 0;
+  real torque_collision = 0;
+
+  // spring-dashpot contacts: the largest approach speed of the body's current contact episode
+  // (from its first contact until it is clear of every other solid again; 0 when clear). It
+  // keeps the derived stiffness of an impact while the bodies slow down in it.
+  real contact_speed = 0;
 
   // velocities at the start of the step (the predictor-corrector averages with them)
   Vec2 vel_n;

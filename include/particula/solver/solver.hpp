@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "particula/bodies/collision.hpp"
+#include "particula/bodies/contact_pairs.hpp"
 #include "particula/case/case.hpp"
 #include "particula/geometry/shape.hpp"
 #include "particula/neighbors/domain.hpp"
@@ -57,8 +59,15 @@ struct PhysicsParams {
   int reorder_interval = 50;  // steps between cell reorderings of the fluid block
   std::vector<BodyParams> bodies;
   std::vector<WallLine> walls;
-  real collision_stiffness = 0;  // k of P.38
-  real collision_range = 0;      // eps of P.38 (m)
+  // contacts (bodies/collision.hpp; docs/method-notes.md, Contacts)
+  ContactModel collision_model = ContactModel::SpringDashpot;
+  real collision_stiffness = 0;  // spring_dashpot: k_n (0 = derived); paper: k of P.38
+  real collision_range = 0;      // contact distance delta_c (m); 0 = 0.5 d0 (spring_dashpot), 3 d0 (paper)
+  real collision_restitution = 0.8;
+  real collision_friction = 0;
+  real collision_max_overlap = 0.1;       // delta_max / d0
+  bool collision_lubrication = true;
+  real collision_lubrication_range = 0;   // m; 0 = 2 d0
   bool cuda = false;             // particle passes on the GPU (--backend cuda)
 };
 
@@ -167,8 +176,32 @@ class Solver {
   void derivatives_and_continuity(StageStart from, const StageParams& sp);
   void boundary_pressure();
   void group_loads();
-  /// Collision forces of the step (positions frozen); a failure when solids interpenetrate.
+  /// Contacts of the step (positions frozen): finds the touching solids, fails when they
+  /// interpenetrate, and computes the paper's forces, or for the spring-dashpot the stiffness
+  /// of each contact and the time-step limit they impose (contact_dt_).
   std::optional<Failure> collisions();
+  /// Spring-dashpot contacts: every pair within `reach` with a free body (as side a), and the
+  /// free bodies' walls, into contacts_; a failure when solids interpenetrate.
+  std::optional<Failure> find_contacts(real reach);
+  /// Contact episodes: a body near another solid (gap below `imminent`) keeps the largest
+  /// approach speed of the episode (RigidGroup::contact_speed), so that the derived stiffness of
+  /// an impact does not drop as the impact slows the bodies down; 0 once it is clear.
+  void hold_contact_speeds(real imminent);
+  /// The stiffness of each contact (the user's, or derived from the impact speed) and the step
+  /// limit t_c / 20 of the active and imminent ones (contact_dt_).
+  void contact_stiffness(real imminent);
+  /// Spring-dashpot forces and torques of the contacts found by collisions(), over the step dt.
+  void contact_forces(real dt);
+  /// The paper's P.38 repulsion on the candidate pairs (the code path of the paper's cases).
+  std::optional<Failure> paper_collisions();
+  /// U_c: the characteristic impact speed of the step (docs/method-notes.md, Contacts).
+  real characteristic_impact_speed() const;
+  /// The contact parameters of this run (delta_c, damping ratio, friction, lubrication).
+  ContactLaw contact_law() const;
+  /// Failure of solids overlapping by more than the sampling noise (exit code 3).
+  Failure overlap_failure(const RigidGroup& a, const std::string& other, real gap) const;
+  /// One side of a contact: a body's group, or a wall group (mass 0, radius 0).
+  ContactSide contact_side(const RigidGroup& g) const;
   /// Advances the velocities of free and prescribed groups by one stage to time t_stage_end,
   /// from the stage-start velocities v0/omega0 of each group.
   void body_stage(real dt, real t_stage_end, const std::vector<Vec2>& v0, const std::vector<real>& omega0);
@@ -218,6 +251,21 @@ class Solver {
   bool device_current_ = true;         // the device state equals P_
   std::vector<GroupLoads> loads_;
   std::vector<GroupMotion> motions_;
+
+  // contacts of the step (spring-dashpot): the groups a (a body) and b (a body or a wall), the
+  // geometry and the stiffness, found by collisions() and loaded by contact_forces()
+  struct StepContact {
+    std::size_t a = 0, b = 0;
+    Contact c;
+    real k = 0;
+  };
+  std::vector<StepContact> contacts_;
+  real contact_dt_ = 0;  // dt limit of the active and imminent contacts, 0 = none
+  std::vector<std::size_t> body_groups_;  // group index of each body, in group order
+  std::vector<Vec2> body_pos_;
+  std::vector<real> body_bound_;
+  std::vector<BodyPair> body_pairs_;
+  std::vector<real> contact_approach_;
 
   // reordering scratch
   std::vector<std::uint32_t> reorder_key_;
