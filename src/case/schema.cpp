@@ -500,7 +500,20 @@ std::vector<SectionSpec> make_sections() {
       table_section("resolution", "Particle spacing and kernel size."),
       table_section("fluid", "Fluid properties and forces on the fluid."),
       table_section("time", "Simulated time span and time-step control."),
-      table_section("numerics", "Discretisation schemes and their coefficients."),
+      table_section("numerics",
+                    "Discretisation schemes and their coefficients. The defaults are meant to work unchanged: "
+                    "they run the shipped cases and the robustness suite of `particula validate --group "
+                    "robustness` (untuned cases: piles of bodies, flows past bodies at Re 0.1 to 100, closing "
+                    "gaps; docs/validation.md). Change one only for a reason: `shifting_beta` up (0.02) when a "
+                    "long run at low Reynolds number shows particle clumping or voids in snapshots, down when "
+                    "shifting's smoothing of a sharp velocity gradient matters; `odd_even_damping` up (to 0.01) "
+                    "if column-wise alternating velocities appear at a high cell Reynolds number c d0 / nu, 0 "
+                    "to reproduce the paper's scheme; `surface_guard` 0 only to study the scheme without it "
+                    "(guard_events in summary.json count its interventions: many events mean the flow is "
+                    "under-resolved next to a surface); `rhie_chow_factor` above 1 only to reproduce older "
+                    "runs; `normals = \"kernel\"` and `laplacian = \"morris\"` and `boundary = \"dummy\"` are "
+                    "the paper's baselines for comparison. A run that stops with exit 3 names the likely cause "
+                    "and the keys to look at."),
       table_section("initial", "Initial particle arrangement and velocity field."),
       table_section("output", "What is written to the run directory, and how often."),
       table_section("guard", "Bounds that stop a run that is blowing up."),
