@@ -141,8 +141,7 @@ enum Counter {
 class CudaBackend final : public DeviceBackend {
  public:
   CudaBackend(const PhysicsParams& prm, const GridGeometry& grid, const WendlandC2& kernel, const Particles& P)
-      : grid_(grid), kernel_(kernel), d0_(prm.d0), rho0_(prm.rho0), c_sound_(prm.c), p0_(prm.p0),
-        kernel_normals_(prm.kernel_normals),
+      : grid_(grid), kernel_(kernel), d0_(prm.d0), kernel_normals_(prm.kernel_normals),
         fatehi_manzari_(prm.fatehi_manzari), single_layer_(prm.single_layer) {
     counters_.resize(kCounters);
     zero_counters();
@@ -484,31 +483,20 @@ class CudaBackend final : public DeviceBackend {
     });
   }
 
-  void guard_surfaces(real keep, real resolved, SolverCounters& cnt) override {
+  void guard_surfaces(real keep, SolverCounters& cnt) override {
     const std::uint32_t* near_a = near_a_.data();
     const std::uint32_t* near_b = near_b_.data();
     const Vec2* normal = normal_.data();
     const Domain domain = grid_.domain;
     Vec2* x = x_.data();
     Vec2* v = v_.data();
-    outcome_.resize(n_);
-    GuardOutcome* outcome = outcome_.data();
-    check(cudaMemset(outcome, 0, n_ * sizeof(GuardOutcome)), "guard outcome");
     unsigned long long* counters = counters_.data();
     each(nb_, n_, [=] __device__(std::size_t i) {
-      const GuardOutcome o = surface_guard_at(i, near_a, near_b, x, normal, v, keep, resolved, domain);
-      outcome[i] = o;
+      const GuardOutcome o = surface_guard_at(i, near_a, near_b, x, normal, v, keep, domain);
       if (o == GuardOutcome::Pushed) atomicAdd(&counters[kSurfacePushed], 1ull);
       if (o == GuardOutcome::Gap) atomicAdd(&counters[kGapSqueezed], 1ull);
     });
-    const std::int64_t gaps_before = cnt.gap_squeezed;
     collect_counters(cnt);
-    if (cnt.gap_squeezed == gaps_before) return;
-    const SweepContext c = context();
-    const real rho0 = rho0_, c_sound = c_sound_, p0 = p0_;
-    real* p = p_.data();
-    real* rho = rho_.data();
-    each(nb_, n_, [=] __device__(std::size_t i) { gap_pressure_at(c, i, outcome, rho0, c_sound, p0, p, rho); });
   }
 
   std::int64_t unhealthy_id(const HealthLimits& lim) override {
@@ -582,7 +570,7 @@ class CudaBackend final : public DeviceBackend {
  private:
   GridGeometry grid_;
   WendlandC2 kernel_;
-  real d0_, rho0_, c_sound_, p0_;
+  real d0_;
   bool kernel_normals_, fatehi_manzari_, single_layer_;
   std::size_t n_ = 0, nb_ = 0, pairs_ = 0;
   real min_distance_ = 0;
@@ -601,7 +589,6 @@ class CudaBackend final : public DeviceBackend {
   DArray<std::uint32_t> count_, j_, cell_of_, sorted_, keys_, cell_start_, near_a_, near_b_;
   DArray<std::size_t> order_;
   DArray<unsigned char> scratch_bytes_;
-  DArray<GuardOutcome> outcome_;
   DArray<unsigned long long> counters_;
   // bodies
   std::vector<GroupRange> ranges_host_;

@@ -465,25 +465,18 @@ void Solver::shift_particles(real dt, real vmax) {
 void Solver::guard_surfaces() {
   const real keep = prm_.surface_guard * prm_.d0;
   if (!(keep > 0)) return;
-  if (dev_) return dev_->guard_surfaces(keep, prm_.d0, counters_);
+  if (dev_) return dev_->guard_surfaces(keep, counters_);
   const std::size_t n = P_.size(), nb = P_.n_boundary;
-  guard_outcome_.assign(n, GuardOutcome::None);
   std::int64_t pushed = 0, gap = 0;
 #pragma omp parallel for schedule(static) reduction(+ : pushed, gap)
   for (std::size_t i = nb; i < n; ++i) {
-    const GuardOutcome o = surface_guard_at(i, near_a_.data(), near_b_.data(), P_.x.data(), P_.normal.data(),
-                                            P_.v.data(), keep, prm_.d0, domain_);
-    guard_outcome_[i] = o;
+    const GuardOutcome o =
+        surface_guard_at(i, near_a_.data(), near_b_.data(), P_.x.data(), P_.normal.data(), P_.v.data(), keep, domain_);
     pushed += o == GuardOutcome::Pushed ? 1 : 0;
     gap += o == GuardOutcome::Gap ? 1 : 0;
   }
   counters_.surface_pushed += pushed;
   counters_.gap_squeezed += gap;
-  if (gap == 0) return;
-  const SweepContext c = sweep_context();
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = nb; i < n; ++i)
-    gap_pressure_at(c, i, guard_outcome_.data(), prm_.rho0, prm_.c, prm_.p0, P_.p.data(), P_.rho.data());
 }
 
 void Solver::reorder_fluid() {

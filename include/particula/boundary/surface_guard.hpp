@@ -90,24 +90,16 @@ enum class GuardOutcome : std::uint8_t { None = 0, Pushed = 1, Gap = 2 };
 /// Two surfaces face each other across a gap (normals within 60 degrees of opposite).
 PARTICULA_HD bool facing(const SurfaceTangent& a, const SurfaceTangent& b) { return dot(a.n, b.n) < -0.5; }
 
-/// The surface guard for one fluid particle (see the header comment). `keep` = d_keep and
-/// `resolved` = the narrowest gap the particles resolve (d0), in metres.
-PARTICULA_HD GuardOutcome guard_surfaces(const NearSurfaces& ns, real keep, real resolved, const Domain& domain,
-                                         Vec2& x, Vec2& v) {
+/// The surface guard for one fluid particle (see the header comment). `keep` = d_keep in metres.
+PARTICULA_HD GuardOutcome guard_surfaces(const NearSurfaces& ns, real keep, const Domain& domain, Vec2& x, Vec2& v) {
   if (ns.count == 0 || !(keep > 0)) return GuardOutcome::None;
   if (ns.count == 2 && facing(ns.s[0], ns.s[1])) {
     const SurfaceTangent &a = ns.s[0], &b = ns.s[1];
     const real da = surface_distance(domain, x, a), db = surface_distance(domain, x, b);
-    if (da + db < resolved) {
-      // An unresolved gap (narrower than one particle spacing). Narrower than 2 d_keep: midway
-      // between the two (along a's normal); otherwise kept d_keep from each. The normal velocity
-      // is that of a thin film at the particle's place, linear across the gap.
-      const real w = da + db;
-      if (w < 2 * keep) x = domain.wrap(x + (0.5 * (db - da)) * a.n);
-      else if (da < keep) x = domain.wrap(x + (keep - da) * a.n);
-      else if (db < keep) x = domain.wrap(x - (keep - db) * a.n);
-      const real ta = w > 0 ? surface_distance(domain, x, b) / w : 0.5;  // weight of surface a
-      const real vn = ta * dot(a.v, a.n) + (1 - ta) * dot(b.v, a.n);
+    if (da + db < 2 * keep) {
+      // A closing gap: midway between the two (measured along a's normal), moving with them.
+      x = domain.wrap(x + (0.5 * (db - da)) * a.n);
+      const real vn = 0.5 * dot(a.v + b.v, a.n);
       v += (vn - dot(v, a.n)) * a.n;
       return GuardOutcome::Gap;
     }

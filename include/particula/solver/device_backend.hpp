@@ -70,9 +70,8 @@ class DeviceBackend {
   virtual real end_of_step(real dt, bool single_layer) = 0;
   /// Mean velocity gradient of the step, new pressure gradient, shift with `scale` = beta V_max dt.
   virtual void shift(real scale, real c) = 0;
-  /// The surface guard on every fluid particle with keep-out distance `keep` and resolved gap
-  /// width `resolved` (m), then the pressure of particles in unresolved gaps; counts into `cnt`.
-  virtual void guard_surfaces(real keep, real resolved, SolverCounters& cnt) = 0;
+  /// The surface guard on every fluid particle with keep-out distance `keep` (m); counts into `cnt`.
+  virtual void guard_surfaces(real keep, SolverCounters& cnt) = 0;
   /// Smallest id of an unhealthy particle, or -1.
   virtual std::int64_t unhealthy_id(const HealthLimits& limits) = 0;
 };

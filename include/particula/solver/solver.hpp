@@ -79,7 +79,7 @@ struct SolverCounters {
   std::int64_t wall_pressure_extrapolated = 0;  // P.20 ill-conditioned (sharp corner) -> extrapolated
   std::int64_t normal_fallback = 0;     // P.18 sum vanished -> analytic normal used
   std::int64_t surface_pushed = 0;      // fluid particle put back to the keep-out distance of a surface
-  std::int64_t gap_squeezed = 0;        // fluid particle in a gap narrower than d0 (film velocity, ambient pressure)
+  std::int64_t gap_squeezed = 0;        // fluid particle centred in a gap narrower than twice that
 };
 
 /// Wall-clock seconds spent in each phase of the time step, summed over the steps taken (the
@@ -243,7 +243,6 @@ class Solver {
   std::vector<Vec2> lapV_, G_, v_n_, v_s_, shift_dir_, lap_esum_;
   // per-pair weights of the geometry sweep (solver/sweeps.hpp)
   std::vector<std::uint32_t> near_a_, near_b_;  // nearest surface particles (surface guard)
-  std::vector<GuardOutcome> guard_outcome_;
   std::vector<Vec2> pair_grad_w_;
   std::vector<real> pair_lap_w_;
   // GPU backend: the device holds the particle state; the host copy is refreshed on demand

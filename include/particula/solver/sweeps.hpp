@@ -301,34 +301,9 @@ PARTICULA_HD void shift_particle(Vec2 direction, real scale, const Mat2& grad_v,
 /// normals and velocities are those of the end of the step. Race-free in one loop: it reads
 /// boundary particles and writes only fluid particle i.
 PARTICULA_HD GuardOutcome surface_guard_at(std::size_t i, const std::uint32_t* near_a, const std::uint32_t* near_b,
-                                           Vec2* x, const Vec2* normal, Vec2* v, real keep, real resolved,
-                                           const Domain& domain) {
+                                           Vec2* x, const Vec2* normal, Vec2* v, real keep, const Domain& domain) {
   const NearSurfaces ns = gather_surfaces(near_a[i], near_b[i], x, normal, v);
-  return guard_surfaces(ns, keep, resolved, domain, x[i], v[i]);
-}
-
-/// The pressure of a fluid particle in an unresolved gap (surface guard outcome Gap): the
-/// Shepard mean of the pressures of its fluid neighbours that are not in a gap themselves, and
-/// the density of that pressure. The continuity equation means nothing for a particle whose
-/// support is a film thinner than one spacing (its density went to 2 rho0 or below zero in a
-/// closing or opening gap, and through P.20 the walls' pressures with it); the film's own force
-/// is the lubrication correction of the contact model. Without such neighbours: p0 (rho0).
-/// Race-free: reads only particles with outcome None/Pushed, writes particle i.
-PARTICULA_HD void gap_pressure_at(const SweepContext& c, std::size_t i, const GuardOutcome* outcome, real rho0,
-                                  real c_sound, real p0, real* p, real* rho) {
-  if (outcome[i] != GuardOutcome::Gap) return;
-  real sw = 0, swp = 0;
-  const std::size_t b = c.first_pair(i), st = c.stride;
-  const std::uint32_t np = c.pair_count(i);
-  for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
-    const std::uint32_t j = c.j[k];
-    if (j < c.nb || outcome[j] == GuardOutcome::Gap) continue;
-    const real w = c.kernel.W(norm(c.domain.separation(c.x[i], c.x[j])));
-    sw += w;
-    swp += w * p[j];
-  }
-  p[i] = sw > 0 ? swp / sw : p0;  // alone in the gap: the reference pressure
-  rho[i] = density_from_pressure(p[i], rho0, c_sound, p0);
+  return guard_surfaces(ns, keep, domain, x[i], v[i]);
 }
 
 /// Limits of a healthy state (exit 3 otherwise).
