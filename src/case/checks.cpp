@@ -498,16 +498,23 @@ void check_bodies_in_domain(const Case& c, const LoadContext& ctx) {
   }
 }
 
-/// Bodies must not overlap at t = 0, also across periodic boundaries: bounding circles as a
-/// quick reject, circles exactly, other shapes by points sampled densely on both boundaries
-/// (one inside the other also counts).
-void check_body_overlap(const Case& c, const LoadContext& ctx) {
-  const real tol = 1e-6 * c.d0;
+/// The shifts of the periodic images a body can meet: the 3 x 3 neighbourhood along periodic
+/// axes, (0, 0) included.
+std::vector<Vec2> periodic_shifts(const Case& c) {
   const Vec2 span = c.domain_max - c.domain_min;
   std::vector<Vec2> shifts;
   for (int i = -1; i <= 1; ++i)
     for (int j = -1; j <= 1; ++j)
       if ((i == 0 || c.periodic_x) && (j == 0 || c.periodic_y)) shifts.push_back({i * span.x, j * span.y});
+  return shifts;
+}
+
+/// Bodies must not overlap at t = 0, also across periodic boundaries: bounding circles as a
+/// quick reject, circles exactly, other shapes by points sampled densely on both boundaries
+/// (one inside the other also counts).
+void check_body_overlap(const Case& c, const LoadContext& ctx) {
+  const real tol = 1e-6 * c.d0;
+  const std::vector<Vec2> shifts = periodic_shifts(c);
   std::vector<Outline> outlines;
   for (const BodySpec& b : c.bodies) outlines.emplace_back(b);
   // Samples: 2000 per boundary, more for large bodies (at most 0.05 d0 apart, up to 100000).
@@ -581,13 +588,7 @@ real segment_distance(Vec2 p, Vec2 a, Vec2 b) {
 
 /// b - a, to the nearest periodic image along periodic axes (as Domain::separation, which the
 /// scene uses to decide whether two wall ends are one point).
-Vec2 separation(const Case& c, Vec2 a, Vec2 b) {
-  Vec2 d = b - a;
-  const Vec2 span = c.domain_max - c.domain_min;
-  if (c.periodic_x) d.x -= span.x * std::nearbyint(d.x / span.x);
-  if (c.periodic_y) d.y -= span.y * std::nearbyint(d.y / span.y);
-  return d;
-}
+Vec2 separation(const Case& c, Vec2 a, Vec2 b) { return periodic_separation(c, b, a); }
 
 /// An edge line of the domain box: x = value (axis 0) or y = value (axis 1).
 struct DomainEdge {
@@ -821,11 +822,7 @@ bool cuts_through(const Outline& o, Vec2 a, Vec2 b, real step, real tol) {
 /// stand on a wall, with a flat side (stands_on).
 void check_walls_clear_of_bodies(const Case& c, const LoadContext& ctx) {
   const real tol = 1e-6 * c.d0, reach = 0.5 * c.d0 * (1 - 1e-9);  // as the scene's near_body
-  const Vec2 span = c.domain_max - c.domain_min;
-  std::vector<Vec2> shifts;  // of the body; the wall is moved the other way
-  for (int i = -1; i <= 1; ++i)
-    for (int j = -1; j <= 1; ++j)
-      if ((i == 0 || c.periodic_x) && (j == 0 || c.periodic_y)) shifts.push_back({i * span.x, j * span.y});
+  const std::vector<Vec2> shifts = periodic_shifts(c);  // of the body; the wall is moved the other way
   for (std::size_t k = 0; k < c.bodies.size(); ++k) {
     const Outline o(c.bodies[k]);
     std::vector<Vec2> samples;  // 0.01 d0 apart (at least 2000, at most 200000), made when needed
@@ -900,11 +897,7 @@ void check_initial_contacts(const Case& c, const LoadContext& ctx) {
   };
   constexpr std::size_t kPoints = 2000;
   const real tol = 1e-6 * c.d0;  // a gap of exactly delta_c, up to round-off, is not yet a contact
-  const Vec2 span = c.domain_max - c.domain_min;
-  std::vector<Vec2> shifts;
-  for (int i = -1; i <= 1; ++i)
-    for (int j = -1; j <= 1; ++j)
-      if ((i == 0 || c.periodic_x) && (j == 0 || c.periodic_y)) shifts.push_back({i * span.x, j * span.y});
+  const std::vector<Vec2> shifts = periodic_shifts(c);
   std::vector<Outline> outlines;
   for (const BodySpec& b : c.bodies) outlines.emplace_back(b);
   const auto is_free = [&](std::size_t k) { return c.bodies[k].motion == BodyMotion::Free; };

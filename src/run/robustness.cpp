@@ -41,13 +41,7 @@ ValidationCheck report(std::string quantity, double value, std::string shown) {
 }
 
 /// a - b, through the nearest periodic image along periodic axes.
-Vec2 separation(const Case& c, Vec2 a, Vec2 b) {
-  Vec2 d = a - b;
-  const Vec2 span = c.domain_max - c.domain_min;
-  if (c.periodic_x) d.x -= span.x * std::round(d.x / span.x);
-  if (c.periodic_y) d.y -= span.y * std::round(d.y / span.y);
-  return d;
-}
+Vec2 separation(const Case& c, Vec2 a, Vec2 b) { return periodic_separation(c, a, b); }
 
 /// The shapes of a case's bodies and their surface samples, built once per check (samples at
 /// d0/4, fine enough to see an overlap of a tenth of d0 between two flat sides).

@@ -2,6 +2,8 @@
 // load_case(); physics code reads only this struct, never the file.
 #pragma once
 
+#include <cmath>
+
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -147,5 +149,15 @@ struct Case {
   /// Whether solids interact at all (the paper's force is off without a stiffness).
   bool contacts_active() const { return collision_model != ContactModel::Paper || collision_stiffness > 0; }
 };
+
+/// a - b through the nearest periodic image along the case's periodic axes (the minimum-image
+/// convention of Domain::separation, for code that has a Case and no Domain).
+inline Vec2 periodic_separation(const Case& c, Vec2 a, Vec2 b) {
+  Vec2 d = a - b;
+  const Vec2 span = c.domain_max - c.domain_min;
+  if (c.periodic_x) d.x -= span.x * std::nearbyint(d.x / span.x);
+  if (c.periodic_y) d.y -= span.y * std::nearbyint(d.y / span.y);
+  return d;
+}
 
 }  // namespace particula
