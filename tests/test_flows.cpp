@@ -41,6 +41,18 @@ real profile_error(const Solver& s, Exact exact, real peak) {
   return std::sqrt(sum / n) / peak;
 }
 
+/// A closed H x H box of water (nu = 1e-6) 40 particles high, starting from the hydrostatic
+/// state with gravity g in the fluid, c = 20 sqrt(g H).
+Case hydrostatic_box(real H, real g) {
+  Case c = cases::closed_box(H, H, H / 40);
+  c.gravity = {0, -g};
+  c.gravity_in_fluid = true;
+  c.hydrostatic = true;
+  c.nu = 1e-6;
+  c.c = 20 * std::sqrt(g * H);
+  return c;
+}
+
 }  // namespace
 
 TEST(Flows, CouetteStartup40) {
@@ -108,12 +120,7 @@ TEST(Flows, HydrostaticRest) {
   // Closed 0.1 m box of water at rest with gravity kept in the fluid, 40 particles high,
   // run for 20 sound-crossing times.
   const real H = 0.1, g = 9.81, rho0 = 1000;
-  Case c = cases::closed_box(H, H, H / 40);
-  c.gravity = {0, -g};
-  c.gravity_in_fluid = true;
-  c.hydrostatic = true;
-  c.nu = 1e-6;
-  c.c = 20 * std::sqrt(g * H);
+  Case c = hydrostatic_box(H, g);
   c.shifting_beta = 0.02;
   Solver s = make_solver(c);
   run_to(s, 20 * H / c.c);
@@ -143,12 +150,7 @@ TEST(Flows, HydrostaticRestLong) {
   // Without the odd-even velocity damping a checkerboard of vertical velocities grows under the
   // top wall (e-folding about 0.025 s here) and the run stops at t = 0.17 s.
   const real H = 0.1, g = 9.81;
-  Case c = cases::closed_box(H, H, H / 40);
-  c.gravity = {0, -g};
-  c.gravity_in_fluid = true;
-  c.hydrostatic = true;
-  c.nu = 1e-6;
-  c.c = 20 * std::sqrt(g * H);
+  Case c = hydrostatic_box(H, g);
   Solver s = make_solver(c);
   run_to(s, 50 * H / c.c);
   const auto& P = s.particles();
