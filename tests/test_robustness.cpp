@@ -13,6 +13,7 @@
 
 #include "case_builders.hpp"
 #include "cli_process.hpp"
+#include "fabricated_runs.hpp"
 #include "particula/case/load.hpp"
 #include "particula/io/atomic_file.hpp"
 #include "particula/io/csv.hpp"
@@ -25,27 +26,13 @@
 namespace fs = std::filesystem;
 using namespace particula;
 using cli_test::fresh_dir;
+using fabricated::find;
+using fabricated::Row;
+using fabricated::write_bodies;
 
 namespace {
 
 const fs::path kSource = PARTICULA_SOURCE_DIR;
-
-/// State of one body at one time (the columns of bodies.csv that the checks read).
-struct Row {
-  double x = 0, y = 0, angle = 0, vx = 0, vy = 0, omega = 0, fx = 0, fy = 0;
-};
-
-void write_bodies(const fs::path& dir, int bodies, double dt, double t_end, const std::function<Row(double, int)>& state) {
-  io::CsvWriter csv(dir / "bodies.csv", {"time", "body", "x", "y", "angle", "vx", "vy", "omega", "fx", "fy", "torque",
-                                         "fpx", "fpy", "fvx", "fvy", "fcx", "fcy"});
-  const int n = static_cast<int>(std::lround(t_end / dt));
-  for (int k = 0; k <= n; ++k)
-    for (int b = 0; b < bodies; ++b) {
-      const double t = k * dt;
-      const Row r = state(t, b);
-      csv.row({t, static_cast<double>(b), r.x, r.y, r.angle, r.vx, r.vy, r.omega, r.fx, r.fy, 0, 0, 0, 0, 0, 0, 0});
-    }
-}
 
 BodySpec circle(Vec2 center, real radius, BodyMotion motion = BodyMotion::Free) {
   BodySpec b;
@@ -64,12 +51,6 @@ Case two_circles() {
   c.bodies = {circle({0.003, 0.005}, 1e-3), circle({0.007, 0.005}, 1e-3)};
   c.bodies[1].name = "d";
   return c;
-}
-
-const ValidationCheck& find(const std::vector<ValidationCheck>& checks, const std::string& start) {
-  for (const auto& c : checks)
-    if (c.quantity.rfind(start, 0) == 0) return c;
-  throw std::runtime_error("no check starting with '" + start + "'");
 }
 
 }  // namespace

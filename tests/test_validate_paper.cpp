@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cli_process.hpp"
+#include "fabricated_runs.hpp"
 #include "particula/case/load.hpp"
 #include "particula/io/csv.hpp"
 #include "particula/run/validate.hpp"
@@ -16,34 +17,13 @@
 namespace fs = std::filesystem;
 using namespace particula;
 using cli_test::fresh_dir;
+using fabricated::find;
+using fabricated::Row;
+using fabricated::write_bodies;
 
 namespace {
 
 const fs::path kCases = fs::path(PARTICULA_SOURCE_DIR) / "cases";
-
-/// State of one body at one time (the columns of bodies.csv that the checks read).
-struct Row {
-  double x = 0, y = 0, angle = 0, vx = 0, vy = 0, omega = 0;
-};
-
-/// Writes DIR/bodies.csv with `bodies` bodies sampled every `dt` up to `t_end` from `state(t, body)`.
-void write_bodies(const fs::path& dir, int bodies, double dt, double t_end, const std::function<Row(double, int)>& state) {
-  io::CsvWriter csv(dir / "bodies.csv", {"time", "body", "x", "y", "angle", "vx", "vy", "omega", "fx", "fy", "torque",
-                                         "fpx", "fpy", "fvx", "fvy", "fcx", "fcy"});
-  const int n = static_cast<int>(std::lround(t_end / dt));
-  for (int k = 0; k <= n; ++k)
-    for (int b = 0; b < bodies; ++b) {
-      const double t = k * dt;
-      const Row r = state(t, b);
-      csv.row({t, static_cast<double>(b), r.x, r.y, r.angle, r.vx, r.vy, r.omega, 0, 0, 0, 0, 0, 0, 0, 0, 0});
-    }
-}
-
-const ValidationCheck& find(const std::vector<ValidationCheck>& checks, const std::string& start) {
-  for (const auto& c : checks)
-    if (c.quantity.rfind(start, 0) == 0) return c;
-  throw std::runtime_error("no check starting with '" + start + "'");
-}
 
 }  // namespace
 
