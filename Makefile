@@ -3,7 +3,7 @@
 #   make test   installs what is missing, builds Release, runs the tests (CTest)
 JOBS ?= $(shell nproc)
 
-.PHONY: deps build demo test test-sanitize bench bench-cases clean
+.PHONY: deps build demo test test-sanitize bench bench-cases bench-bodies clean
 
 deps:
 	scripts/install-deps
@@ -43,6 +43,16 @@ bench-cases: build
 	@for c in $(PAPER_CASES); do \
 	  ./build/release/bench/particula_bench_e2e --case cases/$$c.toml --steps $(BENCH_STEPS) --warmup 20 $(BENCH_ARGS) \
 	    | grep -E '^(case|particles|throughput|to the end|RESULT)' || exit 1; \
+	done
+
+# Cost of bodies: a step with 1000 free circles (10 particles across) in a closed box against a
+# step of the same box with fluid only and the same particle count (bench/many_bodies.py writes
+# both cases into build/bench-bodies). Compare the throughputs (particle-steps/s).
+bench-bodies: build
+	python3 bench/many_bodies.py build/bench-bodies --bodies 1000
+	@for c in many_bodies no_bodies; do \
+	  ./build/release/bench/particula_bench_e2e --case build/bench-bodies/$$c.toml --steps 30 --warmup 5 $(BENCH_ARGS) \
+	    | grep -E '^(case|particles|throughput|phases|  |RESULT)' || exit 1; \
 	done
 
 clean:

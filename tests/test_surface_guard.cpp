@@ -1,5 +1,6 @@
 // The surface guard (boundary/surface_guard.hpp): fluid particles never cross a surface, a
-// closing gap carries its particle, shifting never moves a particle into a close surface; and
+// closing gap carries its particle, a gap below two particle spacings is an unresolved film,
+// shifting never moves a particle into a close surface; and
 // the odd-even velocity damping (sweeps.hpp odd_even_velocity_at): zero on linear fields,
 // dissipative on a checkerboard. The long hydrostatic box that the damping makes stable is in
 // tests/test_flows.cpp.
@@ -85,6 +86,31 @@ TEST(SurfaceGuard, ClosingGapCarriesItsParticle) {
   EXPECT_NEAR(x.x, keep, 1e-15);
   EXPECT_NEAR(x.y, keep, 1e-15);
   EXPECT_NEAR(norm(v), 0, 1e-15);
+}
+
+TEST(SurfaceGuard, UnresolvedFilmFractionGrowsAsTheGapCloses) {
+  // A floor at y = 0 and a body surface above at y = gap facing it; the particle midway.
+  const real d0 = 1, film_gap = 2 * d0;
+  const auto film = [&](real gap, Vec2 upper_normal) {
+    NearSurfaces ns = one_surface({0, 0}, {0, 1});
+    ns.s[ns.count++] = SurfaceTangent{{0.1, gap}, upper_normal, {}};
+    return film_fraction(ns, film_gap, kOpen, {0.05, 0.5 * gap});
+  };
+  EXPECT_EQ(film(3.0, {0, -1}), 0);  // resolved: two particle layers and more
+  EXPECT_EQ(film(2.0, {0, -1}), 0);
+  EXPECT_NEAR(film(1.5, {0, -1}), 0.5, 1e-12);
+  EXPECT_EQ(film(1.0, {0, -1}), 1);  // one layer or less: a film
+  EXPECT_EQ(film(0.3, {0, -1}), 1);
+  // The particle's position across the gap does not matter, only the gap width.
+  NearSurfaces ns = one_surface({0, 0}, {0, 1});
+  ns.s[ns.count++] = SurfaceTangent{{0, 1.5}, {0, -1}, {}};
+  EXPECT_NEAR(film_fraction(ns, film_gap, kOpen, {0, 0.3}), 0.5, 1e-12);
+  // Not a gap: a corner (normals at 90 degrees), one surface, or the rule turned off.
+  EXPECT_EQ(film(1.0, {-1, 0}), 0);
+  EXPECT_EQ(film_fraction(one_surface({0, 0}, {0, 1}), film_gap, kOpen, {0, 0.2}), 0);
+  ns = one_surface({0, 0}, {0, 1});
+  ns.s[ns.count++] = SurfaceTangent{{0, 0.5}, {0, -1}, {}};
+  EXPECT_EQ(film_fraction(ns, 0, kOpen, {0, 0.25}), 0);
 }
 
 TEST(SurfaceGuard, ShiftingNeverMovesIntoACloseSurface) {

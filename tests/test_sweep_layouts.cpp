@@ -119,7 +119,7 @@ Fields run_sweeps(SweepContext c, std::size_t slots, const Particles& P, const s
   for (std::size_t i = 0; i < P.n_boundary; ++i)
     if (P.kind[i] == Kind::Boundary)
       f.outcome[i] = wall_pressure_at(c, i, f.p.data(), f.rho.data(), P.normal[i], P.acc[i], s.nu * f.lapV[i], s.f,
-                                      f.p_wall[i]);
+                                      wall_pressure_min_den(s.rho0, c.kernel.h), f.p_wall[i]);
   return f;
 }
 

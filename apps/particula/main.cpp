@@ -62,6 +62,9 @@ int main(int argc, char** argv) {
   validate->add_option("--out", validate_opt.out_dir, "Output directory (default runs/validate)");
   validate->add_option("--threads", validate_opt.threads, "OpenMP threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
+  validate->add_option("--set", validate_opt.sets,
+                       "Override a case key in every validation case, after its level's own overrides, e.g. --set "
+                       "numerics.shifting_beta=0.02 (repeatable)");
   validate->add_option("--case", validate_opt.only, "Run only this validation case, of any group (repeatable)");
   std::vector<std::string> validate_groups;
   validate->add_option("--group", validate_groups,

@@ -330,6 +330,12 @@ std::vector<KeySpec> make_schema() {
                "closer than this is put back and loses its velocity into the surface (0 turns the guard off; "
                "docs/method-notes.md).",
                field(&Case::surface_guard)),
+      real_key("numerics.film_gap", "-", def(2.0), closed(0, 4),
+               "Gap between two facing surfaces, in d0, below which the fluid between them is an unresolved "
+               "film: the particles' volume change is left out of the continuity equation (fully below half "
+               "this gap), so that a closing or opening gap builds no spurious cushion or suction; the "
+               "lubrication force of the contact model stands for the film (0 turns it off; docs/method-notes.md).",
+               field(&Case::film_gap)),
       int_key("numerics.wall_pressure_sweeps", def(std::int64_t{1}), closed(1, 50),
               "Sweeps of the single-layer wall pressure update per step.",
               field(&Case::wall_pressure_sweeps)),

@@ -385,11 +385,12 @@ class CudaBackend final : public DeviceBackend {
     const Vec2* lapV = lapV_.data();
     real* p_new = p_new_.data();
     unsigned long long* counters = counters_.data();
+    const real min_den = wall_pressure_min_den(s.rho0, c.kernel.h);
     for (int sweep = 0; sweep < sweeps; ++sweep) {
       each(0, nb_, [=] __device__(std::size_t i) {
         p_new[i] = p[i];
         if (kind[i] != Kind::Boundary) return;
-        const WallPressureOutcome o = wall_pressure_at(c, i, p, rho, normal[i], acc[i], s.nu * lapV[i], s.f, p_new[i]);
+        const WallPressureOutcome o = wall_pressure_at(c, i, p, rho, normal[i], acc[i], s.nu * lapV[i], s.f, min_den, p_new[i]);
         if (o == WallPressureOutcome::Kept) atomicAdd(&counters[kWallKept], 1ull);
         if (o == WallPressureOutcome::Extrapolated) atomicAdd(&counters[kWallExtrapolated], 1ull);
       });
@@ -533,6 +534,9 @@ class CudaBackend final : public DeviceBackend {
     c.vol = vol_.data();
     c.kind = kind_.data();
     c.group = group_.data();
+    c.normal = normal_.data();
+    c.near_a = near_a_.data();
+    c.near_b = near_b_.data();
     c.fatehi_manzari = fatehi_manzari_;
     c.grad_w = grad_w_.data();
     c.lap_w = lap_w_.data();

@@ -551,6 +551,11 @@ std::string report_markdown(const std::vector<EntryResult>& results, const Valid
                               : "analytic and robustness cases twice as fine as shipped, paper cases at the paper's "
                                 "resolution",
                     omp_get_max_threads(), opt.quick ? " --quick" : "");
+  if (!opt.sets.empty()) {
+    md += "Overrides of every case:";
+    for (const auto& s : opt.sets) md += fmt::format(" `--set {}`", s);
+    md += "\n\n";
+  }
   md += "| case | quantity | value | reference | tolerance | result |\n|---|---|---|---|---|---|\n";
   for (const auto& r : results) {
     const std::string name = fmt::format("[{}]({}/)", r.entry->name, r.entry->name);
@@ -621,6 +626,8 @@ EntryResult run_entry(const ValidationEntry& entry, const ValidateOptions& opt) 
   const fs::path case_file = kSource / entry.case_file;
   try {
     run.overrides = level_overrides(entry, case_file, opt.quick, r.d0);
+    run.overrides.insert(run.overrides.end(), opt.sets.begin(), opt.sets.end());
+    if (!opt.sets.empty()) r.d0 = load_case(case_file, run.overrides).d0;
     r.sets = run.overrides;
     if (!opt.quiet)
       std::fprintf(stderr, "validate: %s (%s, resolution.d0 = %g m) ...\n", entry.name.c_str(),

@@ -70,6 +70,7 @@ StageParams Solver::stage_params(real dt) const {
   s.c = prm_.c;
   s.p0 = prm_.p0;
   s.kappa = prm_.odd_even_damping * prm_.c * prm_.h;  // kappa = alpha c h (method-notes)
+  s.film_gap = prm_.film_gap * prm_.d0;
   s.single_layer = prm_.single_layer;
   return s;
 }
@@ -122,6 +123,9 @@ SweepContext Solver::sweep_context() const {
   c.vol = vol_.data();
   c.kind = P_.kind.data();
   c.group = P_.group.data();
+  c.normal = P_.normal.data();
+  c.near_a = near_a_.empty() ? nullptr : near_a_.data();
+  c.near_b = near_b_.empty() ? nullptr : near_b_.data();
   c.fatehi_manzari = prm_.fatehi_manzari;
   c.grad_w = pair_grad_w_.data();
   c.lap_w = pair_lap_w_.data();
@@ -259,6 +263,7 @@ void Solver::boundary_pressure() {
   const Vec2 f = prm_.body_force + (prm_.gravity_in_fluid ? prm_.gravity : Vec2{});
   const SweepContext c = sweep_context();
   p_new_.resize(nb);
+  const real min_den = wall_pressure_min_den(prm_.rho0, prm_.h);
   std::int64_t kept = 0, extrapolated = 0;
   for (int sweep = 0; sweep < prm_.wall_pressure_sweeps; ++sweep) {
 #pragma omp parallel for schedule(static) reduction(+ : kept, extrapolated)
@@ -266,7 +271,8 @@ void Solver::boundary_pressure() {
       p_new_[i] = P_.p[i];
       if (P_.kind[i] != Kind::Boundary) continue;
       const WallPressureOutcome o =
-          wall_pressure_at(c, i, P_.p.data(), P_.rho.data(), P_.normal[i], P_.acc[i], prm_.nu * lapV_[i], f, p_new_[i]);
+          wall_pressure_at(c, i, P_.p.data(), P_.rho.data(), P_.normal[i], P_.acc[i], prm_.nu * lapV_[i], f,
+                           min_den, p_new_[i]);
       kept += o == WallPressureOutcome::Kept ? 1 : 0;
       extrapolated += o == WallPressureOutcome::Extrapolated ? 1 : 0;
     }

@@ -70,12 +70,13 @@ struct NearSurfaces {
   SurfaceTangent s[2];
 };
 
-/// The surfaces of slots a and b gathered from the boundary arrays (positions, normals, velocities).
+/// The surfaces of slots a and b gathered from the boundary arrays (positions, normals, and
+/// velocities unless v is null).
 PARTICULA_HD NearSurfaces gather_surfaces(std::uint32_t a, std::uint32_t b, const Vec2* x, const Vec2* n,
                                           const Vec2* v) {
   NearSurfaces out;
-  if (a != kNoSurface) out.s[out.count++] = SurfaceTangent{x[a], n[a], v[a]};
-  if (b != kNoSurface) out.s[out.count++] = SurfaceTangent{x[b], n[b], v[b]};
+  if (a != kNoSurface) out.s[out.count++] = SurfaceTangent{x[a], n[a], v ? v[a] : Vec2{}};
+  if (b != kNoSurface) out.s[out.count++] = SurfaceTangent{x[b], n[b], v ? v[b] : Vec2{}};
   return out;
 }
 
@@ -115,6 +116,18 @@ PARTICULA_HD GuardOutcome guard_surfaces(const NearSurfaces& ns, real keep, cons
     out = GuardOutcome::Pushed;
   }
   return out;
+}
+
+/// The unresolved-film fraction of a fluid particle (docs/method-notes.md, "Unresolved films"):
+/// between two facing surfaces whose gap through the particle, d_a + d_b, is narrower than
+/// `film_gap`, the squeeze flow that drains (or fills) the gap is not resolved by one or two
+/// particle layers, and the particle's volume change is left out of the continuity equation in
+/// proportion: 0 for a gap of film_gap or more, 1 for film_gap / 2 or less, linear between.
+PARTICULA_HD real film_fraction(const NearSurfaces& ns, real film_gap, const Domain& domain, Vec2 x) {
+  if (ns.count < 2 || !(film_gap > 0) || !facing(ns.s[0], ns.s[1])) return 0;
+  const real gap = surface_distance(domain, x, ns.s[0]) + surface_distance(domain, x, ns.s[1]);
+  const real f = (film_gap - gap) / (0.5 * film_gap);
+  return f <= 0 ? real(0) : (f >= 1 ? real(1) : f);
 }
 
 /// Particle shifting never moves a particle towards a surface it is within `range` of (one

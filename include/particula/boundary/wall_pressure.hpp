@@ -57,8 +57,21 @@ enum class WallPressureOutcome { Solved, Extrapolated, Kept };
 /// the run blew up), so the pressure is extrapolated instead (wall_extrapolation).
 inline constexpr real kWallPressureMinConditioning = 0.5;
 
-PARTICULA_HD bool wall_pressure_well_conditioned(const WallPressureSums& s) {
-  return s.fluid_neighbors > 0 && s.den >= kWallPressureMinConditioning * s.scale;
+/// P.20 also needs fluid close enough to the surface to carry the normal derivative. The
+/// renormalized gradient of the linear field (x - x_i) . n is exact, so on a flat wall
+/// sum_j k_j rho_j (x_j - x_i) . n = 1 over the fluid neighbours: den = 1 / (rho L) with L the
+/// k-weighted mean distance of the fluid neighbours from the wall, below the support radius h
+/// on any flat wall (about 1.2 d0 = 0.45 h on a lattice). P.20 puts the wall pressure
+/// 1/den = rho L times the normal momentum balance (surface acceleration, viscous and body
+/// forces) away from the neighbours' mean; where the only fluid neighbours are at the edge of
+/// the support (a surface facing a lone particle in a gap narrower than the kernel), L grows
+/// without bound, and the surface acceleration in P.20 becomes an added mass that feeds back
+/// on the body within a step (a polygon at rest against a body reached 500 N/m in one output
+/// interval). Below den = 1 / (rho0 h), i.e. L > h, the pressure is extrapolated instead.
+PARTICULA_HD real wall_pressure_min_den(real rho0, real h) { return 1 / (rho0 * h); }
+
+PARTICULA_HD bool wall_pressure_well_conditioned(const WallPressureSums& s, real min_den = 0) {
+  return s.fluid_neighbors > 0 && s.den >= kWallPressureMinConditioning * s.scale && s.den >= min_den;
 }
 
 /// Sums of the corner fallback over the fluid neighbours j of boundary particle i: the

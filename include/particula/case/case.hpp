@@ -103,6 +103,7 @@ struct Case {
   real shifting_beta = 0.01;
   real odd_even_damping = 0.005;
   real surface_guard = 0.25;
+  real film_gap = 2.0;
   int wall_pressure_sweeps = 1;
 
   // [initial]

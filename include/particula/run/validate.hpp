@@ -99,6 +99,9 @@ struct ValidateOptions {
   int threads = 0;
   bool quiet = false;
   std::vector<std::string> only;  // run only these entries (empty: all of the selected groups)
+  /// --set overrides applied to every case after its level's own (e.g. to try a numerics value
+  /// on the whole suite); written into the report.
+  std::vector<std::string> sets;
   /// The groups to run (empty: analytic and paper, the suite before the robustness group was
   /// added; robustness cases are run only when asked for, by group or by --case).
   std::vector<ValidationGroup> groups;

@@ -54,6 +54,7 @@ struct PhysicsParams {
   real odd_even_damping = 0.005;  // alpha of the velocity odd-even damping, kappa = alpha c h
   real shifting_beta = 0.01;
   real surface_guard = 0.25;  // keep-out distance of fluid from surfaces, in d0 (0: off)
+  real film_gap = 2.0;        // gap below which fluid between two surfaces is an unresolved film, in d0 (0: off)
   int wall_pressure_sweeps = 1;
   real rho_min_ratio = 0.5, rho_max_ratio = 2.0;
   int reorder_interval = 50;  // steps between cell reorderings of the fluid block

@@ -63,6 +63,10 @@ struct SweepContext {
   const real* vol = nullptr;
   const Kind* kind = nullptr;
   const std::int32_t* group = nullptr;  // rigid group of a boundary particle (nearest surfaces)
+  const Vec2* normal = nullptr;         // outward normals of the surface particles
+  // the nearest surface particles of each fluid particle, from this step's geometry sweep
+  const std::uint32_t* near_a = nullptr;
+  const std::uint32_t* near_b = nullptr;
   bool fatehi_manzari = true;  // false: Morris Laplacian (baseline)
   // written by the geometry sweep
   const Vec2* grad_w = nullptr;    // per pair: w_j B_i gradW_ij (renormalized gradient weight, P.7)
@@ -206,22 +210,38 @@ PARTICULA_HD real rhie_chow_at(const SweepContext& c, std::size_t i, const real*
   return div_g - (lap_p - dot(c.lap_esum[i], Gi));
 }
 
+/// Whether neighbour j of surface particle i is the surface of another solid facing it across a
+/// gap (another rigid group, normals more than 120 degrees apart). P.20 leaves such neighbours
+/// out: the wall pressure is a condition on the fluid beside the surface, and two surfaces that
+/// read each other's P.20 pressures across a gap narrower than the kernel support form a loop
+/// that the conditioning guard allows to amplify (weights up to 2 in magnitude), which ran away
+/// in a body resting against a wall (docs/method-notes.md, "Unresolved films"). Box corners
+/// (normals at 90 degrees) and a body's own surface keep the paper's treatment.
+PARTICULA_HD bool surface_across_a_gap(const SweepContext& c, std::size_t i, std::uint32_t j) {
+  return j < c.nb && c.group != nullptr && c.normal != nullptr && c.kind[j] == Kind::Boundary &&
+         c.group[j] != c.group[i] && dot(c.normal[i], c.normal[j]) < -0.5;
+}
+
 /// P.20 for boundary particle i: the pressure that makes the normal momentum balance hold at
 /// the wall, from the neighbours' pressures, the surface acceleration `a`, nu <lap V>_i and the
 /// body force `f` kept in the fluid. Where P.20 is ill-conditioned (sharp convex corners, see
-/// kWallPressureMinConditioning) the pressure is extrapolated from the fluid neighbours with the
+/// kWallPressureMinConditioning), or its fluid neighbours are too far from the surface to carry
+/// the normal derivative (den below min_den = 1 / (rho0 h), see wall_pressure_well_conditioned),
+/// the pressure is extrapolated from the fluid neighbours with the
 /// same momentum balance. Kept: p_out untouched (no fluid neighbour).
 PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContext& c, std::size_t i, const real* p, const real* rho,
-                                                  Vec2 n, Vec2 a, Vec2 nu_lap_v, Vec2 f, real& p_out) {
+                                                  Vec2 n, Vec2 a, Vec2 nu_lap_v, Vec2 f, real min_den,
+                                                  real& p_out) {
   WallPressureSums s;
   const real rhoi = rho[i];
   const std::size_t b = c.first_pair(i), st = c.stride;
   const std::uint32_t np = c.pair_count(i);
   for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
     const std::uint32_t j = c.j[k];
+    if (surface_across_a_gap(c, i, j)) continue;
     wall_pressure_pair(s, c.grad_w[k], n, p[j], 0.5 * (rhoi + rho[j]), j >= c.nb);
   }
-  if (wall_pressure_well_conditioned(s) && wall_pressure(s, a, nu_lap_v, f, n, p_out))
+  if (wall_pressure_well_conditioned(s, min_den) && wall_pressure(s, a, nu_lap_v, f, n, p_out))
     return WallPressureOutcome::Solved;
   WallExtrapolationSums e;
   const Vec2 xi = c.x[i], balance = f + nu_lap_v - a;
@@ -244,6 +264,7 @@ struct StageParams {
   Vec2 f;              // body force, plus gravity when it is kept in the fluid
   real rho0 = 1000, c = 0, p0 = 0;
   real kappa = 0;      // coefficient of the velocity odd-even damping (m^2/s), see odd_even_velocity_at
+  real film_gap = 0;   // gap (m) below which a fluid particle between two surfaces is a film (0: off)
   bool single_layer = true;
 };
 
@@ -366,13 +387,24 @@ PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContext& c, std::size_t i
   if (s.kappa > 0) v[i] += (s.dt * s.kappa) * odd_even_velocity_at(c, i, grad_v, lap_v[i]);
 }
 
+/// The unresolved-film fraction of fluid particle i (boundary/surface_guard.hpp, film_fraction)
+/// from its nearest surfaces of this step's geometry sweep; 0 for boundary particles.
+PARTICULA_HD real film_fraction_at(const SweepContext& c, std::size_t i, real film_gap) {
+  if (i < c.nb || !(film_gap > 0) || c.near_a == nullptr) return 0;
+  return film_fraction(gather_surfaces(c.near_a[i], c.near_b[i], c.x, c.normal, nullptr), film_gap, c.domain, c.x[i]);
+}
+
 /// Velocity derivatives of the new V at particle i, then its continuity stage from rho_start.
+/// In an unresolved film the volume change -rho div V is left out in proportion to the film
+/// fraction (the Rhie-Chow term stays: it relaxes the particle's pressure to its neighbours').
 /// Race-free in one loop: the derivatives read V and the frozen volumes, never rho or P.
 PARTICULA_HD void derivatives_and_continuity_at(const SweepContext& c, std::size_t i, const Vec2* v,
                                                 const real* rho_start, const real* rc, const StageParams& s,
                                                 Mat2* grad_v, Vec2* lap_v, real* div_v, real* rho, real* p) {
   store_velocity_derivatives(c, i, v, grad_v, lap_v, div_v);
-  if (evolves_density(i, c.nb, c.kind[i], s.single_layer)) continuity_stage(rho_start[i], div_v[i], rc[i], s, rho[i], p[i]);
+  if (!evolves_density(i, c.nb, c.kind[i], s.single_layer)) return;
+  const real resolved = 1 - film_fraction_at(c, i, s.film_gap);
+  continuity_stage(rho_start[i], resolved * div_v[i], rc[i], s, rho[i], p[i]);
 }
 
 // ---- rigid surfaces ------------------------------------------------------------------------
