@@ -55,12 +55,15 @@ void expect_covers(const AddressArchive& ar, const T& obj, std::size_t expected)
 Checkpoint sample() {
   Checkpoint c;
   c.case_toml = "name = \"sample\"\n# every byte \x01\xff survives\n";
+  c.case_hash = 0x0123456789abcdefull;
   c.time = 0.123456789012345;
   c.step = 987654321;
   c.counters = {1, 2, 3, 4};
   c.marks = {{"bodies", 0.1}, {"snapshots", -std::numeric_limits<real>::infinity()}, {"probe:profile", 0.09}};
+  // Boundary block: a wall group of two surface particles [0, 2), then a body group [2, 4) with a
+  // surface particle and a dummy copying it; three fluid particles follow.
   Particles& P = c.particles;
-  const std::size_t n = 7, nb = 3;
+  const std::size_t n = 7, nb = 4;
   P.resize(n);
   P.resize_boundary(nb);
   for (std::size_t i = 0; i < n; ++i) {
@@ -69,9 +72,9 @@ Checkpoint sample() {
     P.rho[i] = 1000 + i;
     P.p[i] = -3.5 * i;
     P.m[i] = 1e-6 * (i + 1);
-    P.kind[i] = i < nb ? (i == 2 ? Kind::Dummy : Kind::Boundary) : Kind::Fluid;
-    P.group[i] = i < nb ? static_cast<std::int32_t>(i % 2) : -1;
-    P.id[i] = 100 + static_cast<std::int64_t>(n - i);
+    P.kind[i] = i < nb ? (i == 3 ? Kind::Dummy : Kind::Boundary) : Kind::Fluid;
+    P.group[i] = i < nb ? static_cast<std::int32_t>(i / 2) : -1;
+    P.id[i] = static_cast<std::int64_t>(n - 1 - i);
   }
   for (std::size_t i = 0; i < nb; ++i) {
     P.local[i] = {2.0 * i, 3.0 * i};
@@ -79,7 +82,7 @@ Checkpoint sample() {
     P.ds[i] = 0.5 + i;
     P.acc[i] = {-1.0 * i, 4.0};
     P.normal[i] = {1, 0};
-    P.source[i] = i == 2 ? 0 : -1;
+    P.source[i] = i == 3 ? 2 : -1;
   }
   RigidGroup a;
   a.name = "lower wall";
@@ -102,8 +105,12 @@ Checkpoint sample() {
   b.name = "disc";
   b.motion = Motion::Free;
   b.is_wall = false;
+  b.body = 0;
+  b.mass = 0.5;
+  b.inertia = 0.25;
+  b.area = 1e-4;
   b.first = 2;
-  b.count = 1;
+  b.count = 2;
   b.torque = -0.0;
   c.groups = {a, b};
   return c;
@@ -160,6 +167,7 @@ TEST(Checkpoint, RoundTripKeepsEveryFieldBitwise) {
   write_checkpoint(file, c);
   const Checkpoint r = read_checkpoint(file);
   EXPECT_EQ(r.case_toml, c.case_toml);
+  EXPECT_EQ(r.case_hash, c.case_hash);
   EXPECT_EQ(r.time, c.time);
   EXPECT_EQ(r.step, c.step);
   EXPECT_EQ(r.counters.wall_pressure_kept, 3);
@@ -168,9 +176,9 @@ TEST(Checkpoint, RoundTripKeepsEveryFieldBitwise) {
     EXPECT_EQ(r.marks[k].stream, c.marks[k].stream);
     EXPECT_EQ(r.marks[k].last_scheduled, c.marks[k].last_scheduled);
   }
-  EXPECT_EQ(r.particles.n_boundary, 3u);
-  EXPECT_EQ(r.particles.kind[2], Kind::Dummy);
-  EXPECT_EQ(r.particles.source[2], 0);
+  EXPECT_EQ(r.particles.n_boundary, 4u);
+  EXPECT_EQ(r.particles.kind[3], Kind::Dummy);
+  EXPECT_EQ(r.particles.source[3], 2);
   EXPECT_EQ(r.particles.v[3].y, std::nextafter(1.0, 2.0) * 3);
   ASSERT_EQ(r.groups.size(), 2u);
   EXPECT_EQ(r.groups[0].name, "lower wall");
