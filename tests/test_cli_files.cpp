@@ -3,7 +3,8 @@
 // the old run until the new one has started; a file-system failure is exit code 4, logged, and
 // the run resumes from its last checkpoint; temporary files of a killed particula are removed on
 // resume; SIGTERM during a long output ends the run within a second with a checkpoint, and the
-// resumed run writes what the interrupted one gave up.
+// resumed run writes what the interrupted one gave up; validate and generate write only into
+// what is theirs.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -230,7 +231,7 @@ TEST(CliFiles, SigtermDuringALongOutputEndsWithinASecondAndTheResumedRunWritesIt
   EXPECT_TRUE(read_text(dir / "full" / "walls.csv") == read_text(dir / "cut" / "walls.csv"));
 }
 
-TEST(CliFiles, ValidateWritesOnlyIntoItsOwnDirectory) {
+TEST(CliFiles, ValidateAndGenerateWriteOnlyWhatIsTheirs) {
   const fs::path dir = fresh_dir("files_validate");
   fs::create_directories(dir / "mine");
   write_text(dir / "mine" / "report.md", "my own report\n");
@@ -241,4 +242,12 @@ TEST(CliFiles, ValidateWritesOnlyIntoItsOwnDirectory) {
   }
   EXPECT_EQ(read_text(dir / "mine" / "report.md"), "my own report\n");
   EXPECT_EQ(read_text(dir / "afile"), "x");
+  // generate --out replaces a case it generated, not a file of the user's.
+  const auto mine = cli({"generate", "--seed", "3", "--out", (dir / "afile").string()});
+  EXPECT_EQ(mine.code, 2) << mine.output;
+  EXPECT_EQ(read_text(dir / "afile"), "x");
+  ASSERT_EQ(cli({"generate", "--seed", "3", "--out", (dir / "case.toml").string()}).code, 0);
+  const auto again = cli({"generate", "--seed", "4", "--out", (dir / "case.toml").string()});
+  EXPECT_EQ(again.code, 0) << again.output;
+  EXPECT_NE(read_text(dir / "case.toml").find("seed 4"), std::string::npos);
 }
