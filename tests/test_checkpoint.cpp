@@ -1,6 +1,7 @@
 // Checkpoint files: every field survives a round trip, the field lists cover every member of
-// Particles, RigidGroup and SolverCounters, and damaged files are refused with a message
-// naming the file.
+// Particles, RigidGroup and SolverCounters, damaged files are refused with a message naming the
+// file, and tampered content with a valid checksum is refused or, when it fits together, runs
+// without harm (tests/checkpoint_tamper.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,9 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "checkpoint_tamper.hpp"
+#include "particula/case/load.hpp"
 #include "particula/io/atomic_file.hpp"
 #include "particula/io/binary.hpp"
 #include "particula/run/checkpoint.hpp"
+#include "particula/scene/scene.hpp"
 
 using namespace particula;
 namespace fs = std::filesystem;
@@ -55,12 +59,15 @@ void expect_covers(const AddressArchive& ar, const T& obj, std::size_t expected)
 Checkpoint sample() {
   Checkpoint c;
   c.case_toml = "name = \"sample\"\n# every byte \x01\xff survives\n";
+  c.case_hash = 0x0123456789abcdefull;
   c.time = 0.123456789012345;
   c.step = 987654321;
   c.counters = {1, 2, 3, 4};
   c.marks = {{"bodies", 0.1}, {"snapshots", -std::numeric_limits<real>::infinity()}, {"probe:profile", 0.09}};
+  // Boundary block: a wall group of two surface particles [0, 2), then a body group [2, 4) with a
+  // surface particle and a dummy copying it; three fluid particles follow.
   Particles& P = c.particles;
-  const std::size_t n = 7, nb = 3;
+  const std::size_t n = 7, nb = 4;
   P.resize(n);
   P.resize_boundary(nb);
   for (std::size_t i = 0; i < n; ++i) {
@@ -69,9 +76,9 @@ Checkpoint sample() {
     P.rho[i] = 1000 + i;
     P.p[i] = -3.5 * i;
     P.m[i] = 1e-6 * (i + 1);
-    P.kind[i] = i < nb ? (i == 2 ? Kind::Dummy : Kind::Boundary) : Kind::Fluid;
-    P.group[i] = i < nb ? static_cast<std::int32_t>(i % 2) : -1;
-    P.id[i] = 100 + static_cast<std::int64_t>(n - i);
+    P.kind[i] = i < nb ? (i == 3 ? Kind::Dummy : Kind::Boundary) : Kind::Fluid;
+    P.group[i] = i < nb ? static_cast<std::int32_t>(i / 2) : -1;
+    P.id[i] = static_cast<std::int64_t>(n - 1 - i);
   }
   for (std::size_t i = 0; i < nb; ++i) {
     P.local[i] = {2.0 * i, 3.0 * i};
@@ -79,7 +86,7 @@ Checkpoint sample() {
     P.ds[i] = 0.5 + i;
     P.acc[i] = {-1.0 * i, 4.0};
     P.normal[i] = {1, 0};
-    P.source[i] = i == 2 ? 0 : -1;
+    P.source[i] = i == 3 ? 2 : -1;
   }
   RigidGroup a;
   a.name = "lower wall";
@@ -102,8 +109,12 @@ Checkpoint sample() {
   b.name = "disc";
   b.motion = Motion::Free;
   b.is_wall = false;
+  b.body = 0;
+  b.mass = 0.5;
+  b.inertia = 0.25;
+  b.area = 1e-4;
   b.first = 2;
-  b.count = 1;
+  b.count = 2;
   b.torque = -0.0;
   c.groups = {a, b};
   return c;
@@ -160,6 +171,7 @@ TEST(Checkpoint, RoundTripKeepsEveryFieldBitwise) {
   write_checkpoint(file, c);
   const Checkpoint r = read_checkpoint(file);
   EXPECT_EQ(r.case_toml, c.case_toml);
+  EXPECT_EQ(r.case_hash, c.case_hash);
   EXPECT_EQ(r.time, c.time);
   EXPECT_EQ(r.step, c.step);
   EXPECT_EQ(r.counters.wall_pressure_kept, 3);
@@ -168,9 +180,9 @@ TEST(Checkpoint, RoundTripKeepsEveryFieldBitwise) {
     EXPECT_EQ(r.marks[k].stream, c.marks[k].stream);
     EXPECT_EQ(r.marks[k].last_scheduled, c.marks[k].last_scheduled);
   }
-  EXPECT_EQ(r.particles.n_boundary, 3u);
-  EXPECT_EQ(r.particles.kind[2], Kind::Dummy);
-  EXPECT_EQ(r.particles.source[2], 0);
+  EXPECT_EQ(r.particles.n_boundary, 4u);
+  EXPECT_EQ(r.particles.kind[3], Kind::Dummy);
+  EXPECT_EQ(r.particles.source[3], 2);
   EXPECT_EQ(r.particles.v[3].y, std::nextafter(1.0, 2.0) * 3);
   ASSERT_EQ(r.groups.size(), 2u);
   EXPECT_EQ(r.groups[0].name, "lower wall");
@@ -264,4 +276,113 @@ TEST(BinaryArchive, ReaderChecksBounds) {
   }
   EXPECT_EQ(io::fnv1a64(""), 0xcbf29ce484222325ull);
   EXPECT_EQ(io::fnv1a64("a"), 0xaf63dc4c8601ec8cull);
+}
+
+// ---- tampering -----------------------------------------------------------------------------------
+
+namespace {
+
+/// The state of tamper::kCase after a few steps, as `particula run` would checkpoint it.
+Checkpoint tamper_checkpoint() {
+  const Case c = load_case_text(tamper::kCase, "tamper.toml");
+  Scene scene = build_scene(c);
+  Solver solver(scene.params, scene.domain, std::move(scene.particles), std::move(scene.groups));
+  for (int k = 0; k < 3; ++k) EXPECT_FALSE(solver.step().has_value());
+  Checkpoint k;
+  k.case_toml = resolved_case_toml(c);
+  k.case_hash = case_identity_hash(k.case_toml);
+  k.time = solver.time();
+  k.step = solver.step_count();
+  k.counters = solver.counters();
+  k.marks = {{"bodies", 0.0}, {"snapshots", 0.0}};
+  k.particles = solver.particles();
+  k.groups = solver.groups();
+  return k;
+}
+
+/// How the checks of `resume` treat a checkpoint's bytes.
+enum class Verdict { RefusedAtDecode, RefusedCase, RefusedAgainstCase, Accepted };
+
+/// Decodes `bytes`, loads its case and checks the one against the other, as `resume` does; an
+/// accepted checkpoint is then run for a step, which must not crash (the sanitizer build checks
+/// memory) or throw.
+Verdict judge(const std::string& bytes, std::string* why = nullptr) {
+  Checkpoint k;
+  try {
+    k = decode_checkpoint(bytes, "state.bin");
+  } catch (const io::IoError& e) {
+    if (why) *why = e.what();
+    return Verdict::RefusedAtDecode;
+  }
+  Case c;
+  try {
+    c = load_case_text(k.case_toml, "state.bin");
+  } catch (const CaseError& e) {
+    if (why) *why = e.what();
+    return Verdict::RefusedCase;
+  }
+  try {
+    check_checkpoint_fits_case(k, c, "state.bin");
+  } catch (const io::IoError& e) {
+    if (why) *why = e.what();
+    return Verdict::RefusedAgainstCase;
+  }
+  const Domain domain{c.domain_min, c.domain_max, c.periodic_x, c.periodic_y};
+  Solver solver(physics_params(c), domain, std::move(k.particles), std::move(k.groups), SolverStart::Restart, k.time,
+                k.step);
+  (void)solver.step();  // a numerical failure (exit 3) is a fine outcome; a crash is not
+  return Verdict::Accepted;
+}
+
+/// The file's checksum recomputed after its payload was edited.
+void reseal(std::string& bytes) {
+  const std::size_t header = 24, trailer = 8;
+  const std::uint64_t sum = io::fnv1a64(std::string_view(bytes).substr(header, bytes.size() - header - trailer));
+  std::memcpy(bytes.data() + bytes.size() - trailer, &sum, sizeof sum);
+}
+
+}  // namespace
+
+TEST(CheckpointTampering, EveryEditedIndexCountOrValueIsRefused) {
+  const Checkpoint good = tamper_checkpoint();
+  ASSERT_EQ(judge(encode_checkpoint(good)), Verdict::Accepted);
+  int refused = 0, checked = 0;
+  for (const auto& t : tamper::structured()) {
+    if (t.needs_run_directory) continue;  // tests/test_resume.cpp: the identity is checked against the marker
+    Checkpoint k = good;
+    t.apply(k);
+    std::string why;
+    const Verdict v = judge(encode_checkpoint(k), &why);
+    ++checked;
+    if (v != Verdict::Accepted) ++refused;
+    EXPECT_NE(v, Verdict::Accepted) << t.name;
+    EXPECT_NE(why.find("state.bin"), std::string::npos) << t.name << ": " << why;
+  }
+  std::printf("tampered fields (valid checksum): %d edits, %d refused\n", checked, refused);
+  EXPECT_GE(checked, 45);
+}
+
+TEST(CheckpointTampering, RandomBytesWithAValidChecksumAreRefusedOrRunSafely) {
+  const std::string good = encode_checkpoint(tamper_checkpoint());
+  SplitMix64 rng(15);
+  int counts[4] = {0, 0, 0, 0};
+  const int mutants = 1000;
+  const std::size_t payload = good.size() - 24 - 8;
+  for (int m = 0; m < mutants; ++m) {
+    std::string bytes = good;
+    // One to three bytes set at random places of the payload, half of the edits in its first
+    // tenth (the case text, time, counters and the index-heavy start of the arrays).
+    const int edits = 1 + static_cast<int>(rng.next() % 3);
+    for (int e = 0; e < edits; ++e) {
+      const std::size_t span = rng.next() % 2 ? payload : payload / 10;
+      bytes[24 + rng.next() % span] = static_cast<char>(rng.next() & 0xff);
+    }
+    reseal(bytes);
+    ++counts[static_cast<int>(judge(bytes))];
+  }
+  std::printf("random payload edits (valid checksum): %d mutants: %d refused at decode, %d with a broken case, %d "
+              "refused against the case, %d accepted and stepped without a crash\n",
+              mutants, counts[0], counts[1], counts[2], counts[3]);
+  EXPECT_EQ(counts[0] + counts[1] + counts[2] + counts[3], mutants);
+  EXPECT_GT(counts[0], 0);
 }

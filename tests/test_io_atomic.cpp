@@ -111,3 +111,21 @@ TEST_F(AtomicTest, ReadingAMissingFileRaisesIoError) {
     EXPECT_NE(std::string(e.what()).find("missing.txt"), std::string::npos);
   }
 }
+
+TEST_F(AtomicTest, WriteFailuresAreWriteErrors) {
+  write_file_atomic(dir_ / "plain", "x");
+  EXPECT_THROW(write_file_atomic(dir_ / "plain" / "d.txt", "x"), WriteError);
+}
+
+TEST_F(AtomicTest, AStopRequestGivesUpAndLeavesTheOldFile) {
+  const fs::path p = dir_ / "big.bin";
+  write_file_atomic(p, "old");
+  const std::string big(20u << 20, 'x');  // three chunks: the stop check is polled between them
+  int polls = 0;
+  EXPECT_THROW(write_file_atomic(p, big, [&] { return ++polls == 2; }), Cancelled);
+  EXPECT_EQ(polls, 2);
+  EXPECT_EQ(read_file(p), "old");
+  EXPECT_EQ(listing(), std::vector<std::string>{"big.bin"});
+  write_file_atomic(p, big, [] { return false; });
+  EXPECT_EQ(read_file(p).size(), big.size());
+}

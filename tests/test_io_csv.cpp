@@ -161,3 +161,27 @@ TEST_F(CsvTest, ReaderRejectsBadCells) {
   write_file_atomic(p, "# only a comment\n");
   EXPECT_THROW((void)read_csv(p), IoError);
 }
+
+TEST_F(CsvTest, AFullDiskIsAWriteErrorNamingTheFile) {
+  // /dev/full: every write fails with ENOSPC, as on a full disk.
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  try {
+    CsvWriter w("/dev/full", kHeader);
+    w.row({0.0, 0, 1.5});
+    FAIL() << "expected WriteError";
+  } catch (const WriteError& e) {
+    EXPECT_NE(std::string(e.what()).find("/dev/full"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("No space left on device"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(CsvTest, RowsAreWrittenTogetherOrNotAtAll) {
+  const fs::path p = dir_ / "block.csv";
+  CsvWriter w(p, kHeader);
+  const std::vector<double> values{0.0, 0, 1.5, 0.0, 1, 2.5};
+  EXPECT_THROW(w.rows(values, [] { return true; }), Cancelled);
+  EXPECT_EQ(read_file(p), "time,body,x\n");
+  w.rows(values, [] { return false; });
+  EXPECT_EQ(read_file(p), "time,body,x\n0,0,1.5\n0,1,2.5\n");
+  EXPECT_THROW(w.rows(std::vector<double>{1.0, 2.0}), std::invalid_argument);
+}

@@ -1,7 +1,7 @@
 // Checkpoints and `particula resume` through the command line: a run 0 -> T and a run
 // 0 -> T/2 resumed to T write bitwise identical bodies.csv, probe CSVs and snapshots (also when
-// the first part is interrupted by SIGINT); damaged checkpoints and disallowed overrides are
-// refused with exit code 2.
+// the first part is interrupted by SIGINT); damaged checkpoints, checkpoints of another case,
+// tampered checkpoints (valid checksum) and disallowed overrides are refused with exit code 2.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "checkpoint_tamper.hpp"
 #include "cli_process.hpp"
 #include "particula/io/vtk.hpp"
 #include "particula/run/checkpoint.hpp"
@@ -208,4 +209,62 @@ TEST(Resume, NumericalFailureWritesADiagnosticCheckpoint) {
   const auto k = particula::read_checkpoint(diag);
   EXPECT_GT(k.step, 0);
   EXPECT_NE(r.output.find("failure.bin"), std::string::npos) << r.output;
+}
+
+TEST(Resume, CheckpointOfAnotherCaseIsRefused) {
+  // The reproducer of issue 15: another case's state.bin copied into a run directory.
+  const fs::path dir = fresh_dir("resume_other_case");
+  ASSERT_EQ(cli(couette(dir / "couette", "0.02")).code, 0);
+  const auto other = cli({"run", (fs::path(PARTICULA_SOURCE_DIR) / "cases" / "hydrostatic.toml").string(), "--out",
+                          (dir / "hydro").string(), "--quiet", "--no-plots", "--set", "time.end=0.005", "--set",
+                          "resolution.d0=0.01"});
+  ASSERT_EQ(other.code, 0) << other.output;
+  const std::string case_before = read_text(dir / "couette" / "case.toml");
+  const std::string walls_before = read_text(dir / "couette" / "walls.csv");
+  fs::copy_file(dir / "hydro" / "checkpoint" / "state.bin", dir / "couette" / "checkpoint" / "state.bin",
+                fs::copy_options::overwrite_existing);
+  const auto r = cli({"resume", (dir / "couette").string(), "--quiet", "--no-plots", "--set", "time.end=0.04"});
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("written for another case"), std::string::npos) << r.output;
+  EXPECT_EQ(read_text(dir / "couette" / "case.toml"), case_before) << "nothing is written";
+  EXPECT_EQ(read_text(dir / "couette" / "walls.csv"), walls_before);
+
+  // A directory particula did not make is not resumed either.
+  fs::create_directories(dir / "made_by_hand" / "checkpoint");
+  fs::copy_file(dir / "hydro" / "checkpoint" / "state.bin", dir / "made_by_hand" / "checkpoint" / "state.bin");
+  const auto h = cli({"resume", (dir / "made_by_hand").string(), "--quiet", "--no-plots"});
+  EXPECT_EQ(h.code, 2) << h.output;
+  EXPECT_NE(h.output.find("not a particula run directory"), std::string::npos) << h.output;
+}
+
+TEST(Resume, TamperedCheckpointWithAValidChecksumIsRefusedWithExitTwo) {
+  // Every index, count, kind, id, size and identity edited in turn (tests/checkpoint_tamper.hpp),
+  // written with a valid checksum: `resume` refuses each with exit code 2 and never crashes.
+  const fs::path dir = fresh_dir("resume_tampered");
+  cli_test::write_text(dir / "tamper.toml", tamper::kCase);
+  const auto run = cli({"run", (dir / "tamper.toml").string(), "--out", (dir / "run").string(), "--quiet",
+                        "--no-plots", "--threads", "1"});
+  ASSERT_EQ(run.code, 0) << run.output;
+  const fs::path state = dir / "run" / "checkpoint" / "state.bin";
+  const std::string good = read_text(state);
+  const particula::Checkpoint k0 = particula::decode_checkpoint(good, state);
+  int refused = 0, crashed = 0, total = 0;
+  for (const auto& t : tamper::structured()) {
+    particula::Checkpoint k = k0;
+    t.apply(k);
+    cli_test::write_text(state, particula::encode_checkpoint(k));
+    const auto r = cli({"resume", (dir / "run").string(), "--quiet", "--no-plots", "--threads", "1", "--set",
+                        "time.end=0.002"});
+    ++total;
+    refused += r.code == 2 ? 1 : 0;
+    crashed += r.signal != 0 ? 1 : 0;
+    EXPECT_EQ(r.code, 2) << t.name << ": " << r.output;
+    EXPECT_EQ(r.signal, 0) << t.name << ": " << r.output;
+    EXPECT_NE(r.output.find("state.bin"), std::string::npos) << t.name << ": " << r.output;
+  }
+  std::printf("tampered checkpoints through 'particula resume': %d, exit 2: %d, crashes: %d\n", total, refused, crashed);
+  cli_test::write_text(state, good);
+  const auto r = cli({"resume", (dir / "run").string(), "--quiet", "--no-plots", "--threads", "1", "--set",
+                      "time.end=0.002"});
+  EXPECT_EQ(r.code, 0) << r.output;
 }

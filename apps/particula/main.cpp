@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "particula/io/error.hpp"
 #include "particula/run/info.hpp"
 #include "particula/run/plots.hpp"
 #include "particula/run/random_case.hpp"
@@ -106,6 +107,9 @@ int main(int argc, char** argv) {
     }
     if (*generate) return particula::generate_command(generate_seed, generate_out);
     if (*plot) return particula::plot_command(plot_dir);
+  } catch (const particula::io::WriteError& e) {
+    std::fprintf(stderr, "error: I/O failure: %s\n", e.what());
+    return particula::kExitIoFailure;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "internal error: %s\n", e.what());
     return 1;

@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 
 namespace particula::io {
@@ -14,12 +16,20 @@ namespace {
 /// The OS reason for the last failure, from errno.
 std::string os_reason(int err) { return std::strerror(err); }
 
-/// Writes all of `content` to `fd`, retrying on EINTR and short writes. Returns 0 or errno.
-int write_all(int fd, std::string_view content) {
+/// Bytes written between two polls of the stop check (a few milliseconds of disk bandwidth).
+constexpr std::size_t kChunk = std::size_t{8} << 20;
+
+/// Returned instead of an errno when the stop check asked to give up.
+constexpr int kStopped = -1;
+
+/// Writes all of `content` to `fd`, retrying on EINTR and short writes, polling `stop` between
+/// chunks. Returns 0, an errno or kStopped.
+int write_all(int fd, std::string_view content, const StopCheck& stop) {
   const char* p = content.data();
   std::size_t left = content.size();
   while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
+    if (stop && stop()) return kStopped;
+    const ssize_t n = ::write(fd, p, std::min(left, kChunk));
     if (n < 0) {
       if (errno == EINTR) continue;
       return errno;
@@ -31,10 +41,10 @@ int write_all(int fd, std::string_view content) {
 }
 
 /// Writes and fsyncs `content` to a new file `tmp`. Returns 0 or errno (tmp may remain).
-int write_temp(const std::filesystem::path& tmp, std::string_view content) {
+int write_temp(const std::filesystem::path& tmp, std::string_view content, const StopCheck& stop) {
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) return errno;
-  int err = write_all(fd, content);
+  int err = write_all(fd, content, stop);
   if (err == 0 && ::fsync(fd) != 0) err = errno;
   if (::close(fd) != 0 && err == 0) err = errno;
   return err;
@@ -50,15 +60,32 @@ void sync_directory(const std::filesystem::path& dir) {
 
 }  // namespace
 
-void write_file_atomic(const std::filesystem::path& p, std::string_view content) {
-  std::filesystem::path tmp = p;
-  tmp += fmt::format(".tmp.{}", static_cast<long>(::getpid()));
-  int err = write_temp(tmp, content);
+std::filesystem::path atomic_temp_path(const std::filesystem::path& target, long pid) {
+  std::filesystem::path tmp = target;
+  tmp += fmt::format(".tmp.{}", pid);
+  return tmp;
+}
+
+std::optional<AtomicTemp> atomic_temp_target(std::string_view name) {
+  const std::size_t dot = name.rfind(".tmp.");
+  if (dot == std::string_view::npos || dot == 0) return std::nullopt;
+  const std::string_view digits = name.substr(dot + 5);
+  if (digits.empty() || digits.size() > 10 || digits.front() == '0') return std::nullopt;
+  long pid = 0;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), pid);
+  if (ec != std::errc() || end != digits.data() + digits.size() || pid <= 0 || pid > 2147483647L) return std::nullopt;
+  return AtomicTemp{std::string(name.substr(0, dot)), pid};
+}
+
+void write_file_atomic(const std::filesystem::path& p, std::string_view content, const StopCheck& stop) {
+  const std::filesystem::path tmp = atomic_temp_path(p, static_cast<long>(::getpid()));
+  int err = write_temp(tmp, content, stop);
   if (err == 0 && std::rename(tmp.c_str(), p.c_str()) != 0) err = errno;
   if (err != 0) {
     std::error_code ignored;
     std::filesystem::remove(tmp, ignored);
-    throw IoError(fmt::format("cannot write '{}': {}", p.string(), os_reason(err)));
+    if (err == kStopped) throw Cancelled();
+    throw WriteError(fmt::format("cannot write '{}': {}", p.string(), os_reason(err)));
   }
   sync_directory(p.parent_path());
 }

@@ -86,7 +86,7 @@ CsvWriter::CsvWriter(std::filesystem::path path, std::vector<std::string> column
   check_columns(columns_);
   file_.reset(std::fopen(path_.c_str(), mode));
   if (!file_)
-    throw IoError(fmt::format("cannot open '{}' for writing: {}", path_.string(), std::strerror(errno)));
+    throw WriteError(fmt::format("cannot open '{}' for writing: {}", path_.string(), std::strerror(errno)));
 }
 
 CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns)
@@ -104,7 +104,7 @@ CsvWriter CsvWriter::append(const std::filesystem::path& path, std::vector<std::
   if (keep == std::string::npos) return CsvWriter(path, std::move(expected_header));  // no header yet
   if (keep < text.size()) {
     std::filesystem::resize_file(path, keep, ec);
-    if (ec) throw IoError(fmt::format("cannot truncate '{}': {}", path.string(), ec.message()));
+    if (ec) throw WriteError(fmt::format("cannot truncate '{}': {}", path.string(), ec.message()));
   }
   return CsvWriter(path, std::move(expected_header), "ab");
 }
@@ -113,17 +113,31 @@ void CsvWriter::row(std::span<const double> values) {
   if (values.size() != columns_.size())
     throw std::invalid_argument(fmt::format("CsvWriter '{}': row of {} values for {} columns", path_.string(),
                                             values.size(), columns_.size()));
-  fmt::memory_buffer line;
-  for (std::size_t i = 0; i < values.size(); ++i)
-    fmt::format_to(std::back_inserter(line), "{}{}", i ? "," : "", values[i]);
-  line.push_back('\n');
-  put(std::string_view(line.data(), line.size()));
+  rows(values);
+}
+
+void CsvWriter::rows(std::span<const double> values, const StopCheck& stop) {
+  const std::size_t nc = columns_.size();
+  if (values.size() % nc != 0)
+    throw std::invalid_argument(fmt::format("CsvWriter '{}': {} values are not whole rows of {} columns",
+                                            path_.string(), values.size(), nc));
+  constexpr std::size_t kRowsPerPoll = 4096;
+  fmt::memory_buffer text;
+  for (std::size_t r = 0; r * nc < values.size(); ++r) {
+    if (stop && r % kRowsPerPoll == 0 && stop()) throw Cancelled();
+    for (std::size_t i = 0; i < nc; ++i) fmt::format_to(std::back_inserter(text), "{}{}", i ? "," : "", values[r * nc + i]);
+    text.push_back('\n');
+  }
+  put(std::string_view(text.data(), text.size()));
 }
 
 void CsvWriter::put(std::string_view text) {
   errno = 0;
-  if (std::fwrite(text.data(), 1, text.size(), file_.get()) != text.size() || std::fflush(file_.get()) != 0)
-    throw IoError(fmt::format("cannot write '{}': {}", path_.string(), std::strerror(errno ? errno : EIO)));
+  if (std::fwrite(text.data(), 1, text.size(), file_.get()) != text.size() || std::fflush(file_.get()) != 0) {
+    const int err = errno ? errno : EIO;
+    std::clearerr(file_.get());
+    throw WriteError(fmt::format("cannot write '{}': {}", path_.string(), std::strerror(err)));
+  }
 }
 
 std::size_t CsvTable::column_index(std::string_view name) const {

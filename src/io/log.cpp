@@ -36,7 +36,7 @@ double steady_seconds() {
 
 RunLog::RunLog(const std::filesystem::path& path, bool echo_to_stderr) : path_(path), echo_(echo_to_stderr) {
   file_.reset(std::fopen(path.c_str(), "a"));
-  if (!file_) throw IoError(fmt::format("cannot open log '{}': {}", path.string(), std::strerror(errno)));
+  if (!file_) throw WriteError(fmt::format("cannot open log '{}': {}", path.string(), std::strerror(errno)));
 }
 
 void RunLog::line(std::string_view text) {

@@ -216,7 +216,11 @@ VtkArray vector_array(std::string name, const std::vector<Vec2>& v) {
 }
 
 void write_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points,
-               const std::vector<VtkArray>& arrays, const std::vector<VtkIntArray>& int_arrays) {
+               const std::vector<VtkArray>& arrays, const std::vector<VtkIntArray>& int_arrays,
+               const StopCheck& stop) {
+  const auto poll = [&] {
+    if (stop && stop()) throw Cancelled();
+  };
   const std::size_t n = points.size();
   std::set<std::string, std::less<>> names;
   for (const auto& a : arrays) check_array(a.name, a.components, a.data.size(), n, names);
@@ -238,16 +242,22 @@ void write_vtp(const std::filesystem::path& path, const std::vector<Vec2>& point
       "\n",
       n);
   out += "      <PointData>\n";
-  for (const auto& a : arrays)
+  for (const auto& a : arrays) {
+    poll();
     append_data_array(out, "Float64", a.name, a.components, a.data.data(), a.data.size() * sizeof(double));
-  for (const auto& a : int_arrays)
+  }
+  for (const auto& a : int_arrays) {
+    poll();
     append_data_array(out, "Int32", a.name, a.components, a.data.data(),
                       a.data.size() * sizeof(std::int32_t));
+  }
   out += "      </PointData>\n";
+  poll();
   append_points(out, points);
+  poll();
   append_verts(out, n);
   out += "    </Piece>\n  </PolyData>\n</VTKFile>\n";
-  write_file_atomic(path, out);
+  write_file_atomic(path, out, stop);
 }
 
 const VtkArray& VtpData::array(std::string_view name) const {

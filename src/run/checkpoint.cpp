@@ -2,8 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
+#include <limits>
+#include <sstream>
+#include <toml++/toml.h>
 
 #include "particula/io/atomic_file.hpp"
 #include "particula/io/binary.hpp"
@@ -50,36 +55,176 @@ void store(std::string& out, const T& v) {
 template <class Ar, class C>
 void payload_fields(Ar& ar, C& c) {
   ar(c.case_toml);
+  ar(c.case_hash);
   ar(c.time);
   ar(c.step);
   solver_counters_fields(ar, c.counters);
   particles_fields(ar, c.particles);
 }
 
+bool finite(real v) { return std::isfinite(v); }
+bool finite(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+/// Every index and count of a checkpoint checked against the others, so that nothing the solver
+/// indexes with them can point outside its arrays, and every value it computes with is finite.
 void check_consistency(const Checkpoint& c, const std::string& what) {
   auto fail = [&](const std::string& why) { throw io::IoError(fmt::format("{}: inconsistent content ({})", what, why)); };
   const Particles& P = c.particles;
   const std::size_t n = P.x.size(), nb = P.n_boundary;
-  if (!std::isfinite(c.time) || c.step < 0) fail("time or step");
+  if (!std::isfinite(c.time) || c.time < 0 || c.step < 0) fail("time or step");
+  for (std::int64_t counter : {c.counters.singular_B, c.counters.singular_Bhat, c.counters.wall_pressure_kept,
+                               c.counters.wall_pressure_extrapolated, c.counters.normal_fallback,
+                               c.counters.surface_pushed, c.counters.gap_squeezed})
+    if (counter < 0) fail("negative guard counter");
   if (nb > n) fail("more boundary particles than particles");
+  if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) fail("too many particles");
   for (std::size_t size : {P.v.size(), P.rho.size(), P.p.size(), P.m.size(), P.kind.size(), P.group.size(), P.id.size()})
     if (size != n) fail("per-particle arrays of different sizes");
   for (std::size_t size : {P.local.size(), P.normal_local.size(), P.ds.size(), P.acc.size(), P.normal.size(), P.source.size()})
     if (size != nb) fail("boundary arrays of the wrong size");
-  const auto n_groups = static_cast<std::int64_t>(c.groups.size());
-  for (std::size_t i = 0; i < n; ++i) {
-    if (static_cast<std::uint8_t>(P.kind[i]) > static_cast<std::uint8_t>(Kind::Dummy)) fail("particle kind");
-    if (P.group[i] < -1 || P.group[i] >= n_groups) fail("particle group index");
-  }
-  for (std::size_t i = 0; i < nb; ++i)
-    if (P.source[i] < -1 || P.source[i] >= static_cast<std::int64_t>(nb)) fail("dummy source index");
-  for (const RigidGroup& g : c.groups) {
-    if (g.first > nb || g.count > nb - g.first) fail("rigid group particle range");
+
+  // Rigid groups: contiguous ranges covering the boundary block in order.
+  const std::size_t n_groups = c.groups.size();
+  std::size_t next_first = 0;
+  for (std::size_t k = 0; k < n_groups; ++k) {
+    const RigidGroup& g = c.groups[k];
     if (g.motion != Motion::Fixed && g.motion != Motion::Prescribed && g.motion != Motion::Free) fail("group motion");
+    if (g.first != next_first || g.count > nb - std::min(g.first, nb)) fail(fmt::format("particle range of rigid group {}", k));
+    next_first = g.first + g.count;
+    if (g.is_wall ? g.body != -1 : g.body < 0) fail(fmt::format("body index of rigid group {}", k));
+    if (g.is_wall && g.motion == Motion::Free) fail(fmt::format("free wall (rigid group {})", k));
+  }
+  if (next_first != nb) fail("the rigid groups do not cover the boundary particles");
+  for (std::size_t k = 0; k + 1 < n_groups; ++k)
+    if (!c.groups[k].is_wall && c.groups[k + 1].is_wall) fail("a wall group after a body group");
+  for (std::size_t k = 0; k < n_groups; ++k)
+    if (!c.groups[k].is_wall) {
+      std::size_t walls = 0;
+      while (walls < n_groups && c.groups[walls].is_wall) ++walls;
+      if (c.groups[k].body != static_cast<int>(k - walls)) fail(fmt::format("body index of rigid group {}", k));
+    }
+
+  // Particles: kinds and groups by block, dummy sources within their group, ids a permutation.
+  std::vector<unsigned char> seen(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto kind = static_cast<std::uint8_t>(P.kind[i]);
+    if (kind > static_cast<std::uint8_t>(Kind::Dummy)) fail(fmt::format("kind of particle {}", i));
+    if (i < nb) {
+      if (P.kind[i] == Kind::Fluid) fail(fmt::format("fluid particle {} in the boundary block", i));
+      const std::int32_t g = P.group[i];
+      if (g < 0 || static_cast<std::size_t>(g) >= n_groups) fail(fmt::format("group index of particle {}", i));
+      const RigidGroup& G = c.groups[static_cast<std::size_t>(g)];
+      if (i < G.first || i >= G.first + G.count) fail(fmt::format("particle {} outside the range of its group", i));
+      const std::int32_t s = P.source[i];
+      if (P.kind[i] == Kind::Dummy) {
+        if (s < 0 || static_cast<std::size_t>(s) >= nb || P.kind[static_cast<std::size_t>(s)] != Kind::Boundary ||
+            P.group[static_cast<std::size_t>(s)] != g)
+          fail(fmt::format("source of dummy particle {}", i));
+      } else if (s != -1) {
+        fail(fmt::format("source of surface particle {}", i));
+      }
+    } else {
+      if (P.kind[i] != Kind::Fluid) fail(fmt::format("boundary particle {} in the fluid block", i));
+      if (P.group[i] != -1) fail(fmt::format("group index of fluid particle {}", i));
+    }
+    const std::int64_t id = P.id[i];
+    if (id < 0 || static_cast<std::uint64_t>(id) >= n || seen[static_cast<std::size_t>(id)])
+      fail(fmt::format("id of particle {} (ids must be 0 .. n-1, each once)", i));
+    seen[static_cast<std::size_t>(id)] = 1;
+  }
+
+  for (const OutputMark& m : c.marks)
+    if (std::isnan(m.last_scheduled) || m.last_scheduled == std::numeric_limits<real>::infinity() ||
+        m.last_scheduled > c.time * (1 + 1e-9) + 1e-300)
+      fail(fmt::format("output mark of '{}'", m.stream));
+}
+
+/// The values a resumed solver computes with: finite, positive densities and masses, bodies with
+/// mass. (A diagnostic checkpoint of a numerical failure may hold anything else: it is read for
+/// inspection, never resumed.)
+void check_values(const Checkpoint& c, const std::function<void(const std::string&)>& fail) {
+  const Particles& P = c.particles;
+  const std::size_t n = P.size(), nb = P.n_boundary;
+  for (std::size_t k = 0; k < c.groups.size(); ++k) {
+    const RigidGroup& g = c.groups[k];
+    for (Vec2 v : {g.pos, g.vel, g.acc, g.pos0, g.force_pressure, g.force_viscous, g.force_collision, g.vel_n})
+      if (!finite(v)) fail(fmt::format("non-finite vector of rigid group {}", k));
+    for (real v : {g.angle, g.omega, g.alpha, g.angle0, g.mass, g.inertia, g.area, g.torque, g.torque_collision,
+                   g.contact_speed, g.omega_n})
+      if (!finite(v)) fail(fmt::format("non-finite value of rigid group {}", k));
+    if (g.mass < 0 || g.inertia < 0 || g.area < 0 || g.contact_speed < 0)
+      fail(fmt::format("negative mass property of rigid group {}", k));
+    if (g.motion == Motion::Free && !(g.mass > 0 && g.inertia > 0 && g.area > 0))
+      fail(fmt::format("free body without mass (rigid group {})", k));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i < nb && (!finite(P.local[i]) || !finite(P.normal_local[i]) || !finite(P.normal[i]) || !finite(P.acc[i]) ||
+                   !std::isfinite(P.ds[i]) || P.ds[i] < 0))
+      fail(fmt::format("boundary data of particle {}", i));
+    if (!finite(P.x[i]) || !finite(P.v[i]) || !std::isfinite(P.p[i])) fail(fmt::format("non-finite state of particle {}", i));
+    if (!(P.rho[i] > 0) || !std::isfinite(P.rho[i])) fail(fmt::format("density of particle {}", i));
+    if (!(P.m[i] >= 0) || !std::isfinite(P.m[i]) || (i >= nb && P.m[i] == 0)) fail(fmt::format("mass of particle {}", i));
   }
 }
 
 }  // namespace
+
+std::uint64_t case_identity_hash(std::string_view resolved_case_toml) {
+  toml::table t;
+  try {
+    t = toml::parse(resolved_case_toml);
+  } catch (const toml::parse_error& e) {
+    throw io::IoError(fmt::format("the case text is not TOML ({})", e.description()));
+  }
+  if (toml::table* time = t["time"].as_table()) time->erase("end");
+  t.erase("output");
+  std::ostringstream canonical;
+  canonical << t;
+  return io::fnv1a64(canonical.str());
+}
+
+void check_checkpoint_fits_case(const Checkpoint& k, const Case& c, const std::filesystem::path& source) {
+  auto fail = [&](const std::string& why) {
+    throw io::IoError(fmt::format("checkpoint '{}': does not fit its case ({})", source.string(), why));
+  };
+  const std::size_t nw = c.walls.size(), nbodies = c.bodies.size();
+  if (k.groups.size() != nw + nbodies)
+    fail(fmt::format("{} rigid groups, the case has {} walls and {} bodies", k.groups.size(), nw, nbodies));
+  for (std::size_t g = 0; g < k.groups.size(); ++g) {
+    const RigidGroup& G = k.groups[g];
+    if (g < nw) {
+      const WallSpec& w = c.walls[g];
+      const Motion motion = norm(w.velocity) > 0 ? Motion::Prescribed : Motion::Fixed;
+      if (!G.is_wall || G.name != w.name || G.motion != motion) fail(fmt::format("rigid group {} is not wall '{}'", g, w.name));
+    } else {
+      const BodySpec& b = c.bodies[g - nw];
+      const Motion motion = b.motion == BodyMotion::Free    ? Motion::Free
+                            : b.motion == BodyMotion::Fixed ? Motion::Fixed
+                                                            : Motion::Prescribed;
+      if (G.is_wall || G.name != b.name || G.motion != motion || G.body != static_cast<int>(g - nw))
+        fail(fmt::format("rigid group {} is not body '{}'", g, b.name));
+    }
+  }
+  check_values(k, fail);
+  const Particles& P = k.particles;
+  if (c.boundary != BoundaryModel::Dummy)
+    for (std::size_t i = 0; i < P.n_boundary; ++i)
+      if (P.kind[i] == Kind::Dummy) fail(fmt::format("dummy particle {} with the single-layer boundary", i));
+  // Fluid particles within the domain enlarged by its size on every side (the solver stops a run
+  // whose fluid leaves a closed domain by more than h, and wraps periodic axes); rigid groups and
+  // their surfaces (a prescribed solid may travel) within 1e5 domain sizes, which keeps the cell
+  // arithmetic of the neighbour search and the periodic wrap in range.
+  const Vec2 L = c.domain_max - c.domain_min;
+  const auto inside = [&](Vec2 x, real margin) {
+    return x.x >= c.domain_min.x - margin * L.x && x.x <= c.domain_max.x + margin * L.x &&
+           x.y >= c.domain_min.y - margin * L.y && x.y <= c.domain_max.y + margin * L.y;
+  };
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (!inside(P.x[i], i < P.n_boundary ? 1e5 : 1.0)) fail(fmt::format("particle {} far outside the domain", i));
+  for (std::size_t g = 0; g < k.groups.size(); ++g)
+    if (!inside(k.groups[g].pos, 1e5) || !inside(k.groups[g].pos0, 1e5))
+      fail(fmt::format("rigid group {} far outside the domain", g));
+}
 
 std::filesystem::path checkpoint_path(const std::filesystem::path& run_dir) {
   return run_dir / "checkpoint" / "state.bin";
@@ -87,7 +232,7 @@ std::filesystem::path checkpoint_path(const std::filesystem::path& run_dir) {
 
 std::string encode_checkpoint(const Checkpoint& c) {
   return encode_checkpoint(
-      CheckpointView{c.case_toml, c.time, c.step, c.counters, c.marks, c.particles, c.groups});
+      CheckpointView{c.case_toml, c.case_hash, c.time, c.step, c.counters, c.marks, c.particles, c.groups});
 }
 
 std::string encode_checkpoint(const CheckpointView& c) {
@@ -154,13 +299,13 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::filesystem::path
 }
 
 void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c) {
-  write_checkpoint(file, CheckpointView{c.case_toml, c.time, c.step, c.counters, c.marks, c.particles, c.groups});
+  write_checkpoint(file, CheckpointView{c.case_toml, c.case_hash, c.time, c.step, c.counters, c.marks, c.particles, c.groups});
 }
 
 void write_checkpoint(const std::filesystem::path& file, const CheckpointView& c) {
   std::error_code ec;
   std::filesystem::create_directories(file.parent_path(), ec);
-  if (ec) throw io::IoError(fmt::format("cannot create '{}': {}", file.parent_path().string(), ec.message()));
+  if (ec) throw io::WriteError(fmt::format("cannot create '{}': {}", file.parent_path().string(), ec.message()));
   io::write_file_atomic(file, encode_checkpoint(c));
 }
 

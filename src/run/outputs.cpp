@@ -11,6 +11,7 @@
 #include "particula/io/atomic_file.hpp"
 #include "particula/io/csv.hpp"
 #include "particula/io/vtk.hpp"
+#include "particula/run/run_dir.hpp"
 
 namespace particula::run_detail {
 
@@ -92,10 +93,14 @@ class SnapshotRelay {
   SnapshotRelay(fs::path scratch, fs::path dir, real drop_after) : scratch_(std::move(scratch)), dir_(std::move(dir)) {
     std::error_code ec;
     if (fs::exists(dir_ / "particles.pvd", ec)) index_ = io::PvdIndex::read(dir_ / "particles.pvd");
+    // Only snapshots particula writes (particles/step_<n>.vtp) are removed, whatever the index names.
     for (const auto& e : index_.entries())
-      if (e.time > drop_after) fs::remove(dir_ / e.file, ec);
+      if (e.time > drop_after && particula_run_entry(fs::path(e.file).lexically_normal(), false) &&
+          fs::path(e.file).lexically_normal().begin()->string() == "particles")
+        fs::remove(dir_ / e.file, ec);
     index_.drop_after(drop_after);
     fs::create_directories(dir_ / "particles", ec);
+    if (ec) throw io::WriteError(fmt::format("cannot create '{}': {}", (dir_ / "particles").string(), ec.message()));
     index_.write(dir_ / "particles.pvd");
   }
 
@@ -106,7 +111,7 @@ class SnapshotRelay {
       const auto& e = entries[consumed_];
       std::error_code ec;
       fs::rename(scratch_ / e.file, dir_ / e.file, ec);
-      if (ec) throw io::IoError(fmt::format("cannot move '{}' to '{}': {}", (scratch_ / e.file).string(),
+      if (ec) throw io::WriteError(fmt::format("cannot move '{}' to '{}': {}", (scratch_ / e.file).string(),
                                             (dir_ / e.file).string(), ec.message()));
       index_.add(e.time, e.file);
     }
@@ -129,27 +134,28 @@ void RunOutputs::add(std::string key, real interval, std::function<void(const So
   streams_.push_back(std::move(s));
 }
 
-RunOutputs::RunOutputs(const fs::path& dir, const Case& c) {
+RunOutputs::RunOutputs(const fs::path& dir, const Case& c, io::StopCheck stop) {
   bodies_ = std::make_unique<BodyHistoryWriter>(dir);
   add("bodies", c.output_interval, [this](const Solver& s) { bodies_->write(s); });
   for (const auto& p : c.probes) {
-    probes_.push_back(std::make_unique<ProbeWriter>(dir, p, c));
+    probes_.push_back(std::make_unique<ProbeWriter>(dir, p, c, stop));
     ProbeWriter* w = probes_.back().get();
     add("probe:" + p.name, p.interval, [w](const Solver& s) { w->write(s); });
   }
   if (c.snapshots) {
-    snapshots_ = std::make_unique<SnapshotWriter>(dir);
+    snapshots_ = std::make_unique<SnapshotWriter>(dir, stop);
     add("snapshots", c.snapshot_interval > 0 ? c.snapshot_interval : c.output_interval,
         [this](const Solver& s) { snapshots_->write(s); });
   }
 }
 
-RunOutputs::RunOutputs(const fs::path& dir, const Case& c, const std::vector<OutputMark>& marks, real t0)
+RunOutputs::RunOutputs(const fs::path& dir, const Case& c, const std::vector<OutputMark>& marks, real t0,
+                       io::StopCheck stop)
     : scratch_(dir / ".resume") {
   std::error_code ec;
   fs::remove_all(scratch_, ec);  // left over by a resumed run that was killed
   fs::create_directories(scratch_, ec);
-  if (ec) throw io::IoError(fmt::format("cannot create '{}': {}", scratch_.string(), ec.message()));
+  if (ec) throw io::WriteError(fmt::format("cannot create '{}': {}", scratch_.string(), ec.message()));
   auto mark = [&](const std::string& key) {
     for (const auto& m : marks)
       if (m.stream == key) return m.last_scheduled;
@@ -168,7 +174,7 @@ RunOutputs::RunOutputs(const fs::path& dir, const Case& c, const std::vector<Out
   });
   for (const auto& p : c.probes) {
     const std::string file = "probe_" + p.name + ".csv";
-    probes_.push_back(std::make_unique<ProbeWriter>(scratch_, p, c));
+    probes_.push_back(std::make_unique<ProbeWriter>(scratch_, p, c, stop));
     csv_relays_.push_back(std::make_unique<CsvRelay>(scratch_ / file, dir / file, mark("probe:" + p.name)));
     ProbeWriter* w = probes_.back().get();
     CsvRelay* relay = csv_relays_.back().get();
@@ -178,7 +184,7 @@ RunOutputs::RunOutputs(const fs::path& dir, const Case& c, const std::vector<Out
     });
   }
   if (c.snapshots) {
-    snapshots_ = std::make_unique<SnapshotWriter>(scratch_);
+    snapshots_ = std::make_unique<SnapshotWriter>(scratch_, stop);
     snapshot_relay_ = std::make_unique<SnapshotRelay>(scratch_, dir, mark("snapshots"));
     add("snapshots", c.snapshot_interval > 0 ? c.snapshot_interval : c.output_interval, [this](const Solver& s) {
       snapshots_->write(s);
@@ -194,9 +200,12 @@ void RunOutputs::resume_schedule(const std::vector<OutputMark>& marks, real t0) 
       if (m.stream == s.key) s.last_scheduled = m.last_scheduled;
     s.last_written = s.last_scheduled;
     // Exactly the next time an uninterrupted run had computed after its last scheduled write;
-    // after the checkpoint when the interval was changed on resuming.
+    // after the checkpoint when the interval was changed on resuming. A write due at the
+    // checkpoint's time itself was given up (a stop request during a long output): it is due
+    // at once.
     s.next = std::isfinite(s.last_scheduled) ? next_multiple(s.last_scheduled, s.interval) : 0;
-    if (s.next <= t0 + 1e-9 * s.interval) s.next = next_multiple(t0, s.interval);
+    const real tol = 1e-9 * s.interval;
+    if (s.next < t0 - tol) s.next = next_multiple(t0, s.interval);
   }
 }
 
@@ -208,16 +217,23 @@ RunOutputs::~RunOutputs() {
 
 void RunOutputs::write(const Solver& solver, bool force) {
   const real t = solver.time();
+  bool cancelled = false;
   for (Stream& s : streams_) {
     const bool due = t >= s.next - 1e-9 * s.interval;
     if (!due && !(force && s.last_written < t)) continue;
-    s.write(solver);
+    try {
+      s.write(solver);
+    } catch (const io::Cancelled&) {
+      cancelled = true;
+      continue;
+    }
     s.last_written = t;
     if (due) {
       s.last_scheduled = t;
       s.next = next_multiple(t, s.interval);
     }
   }
+  if (cancelled) throw io::Cancelled();
 }
 
 real RunOutputs::next_event(real t_end) const {

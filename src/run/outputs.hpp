@@ -26,20 +26,25 @@ class SnapshotRelay;
 /// steps on these times) and, with `force`, whenever it has not yet written the current time
 /// (initial, final and failure states). Writes on the schedule are remembered per stream
 /// (marks()) so that a resumed run can drop the forced extra rows of an interrupted one.
+/// Long writes poll `stop` (observers.hpp); a stream whose write is given up keeps its mark, so
+/// a run resumed from a checkpoint taken then writes that stream's due output first.
 class RunOutputs {
  public:
   /// A fresh run: creates bodies.csv, probe_<name>.csv and particles.pvd in `dir`.
-  RunOutputs(const std::filesystem::path& dir, const Case& c);
+  RunOutputs(const std::filesystem::path& dir, const Case& c, io::StopCheck stop = {});
   /// A resumed run at `t0`: keeps each existing stream up to its mark (rows after it are
   /// dropped: CsvWriter::append, PvdIndex::drop_after) and appends to it. Throws io::IoError
   /// when an existing file does not fit (e.g. another header).
-  RunOutputs(const std::filesystem::path& dir, const Case& c, const std::vector<OutputMark>& marks, real t0);
+  RunOutputs(const std::filesystem::path& dir, const Case& c, const std::vector<OutputMark>& marks, real t0,
+             io::StopCheck stop = {});
   ~RunOutputs();
   RunOutputs(const RunOutputs&) = delete;
   RunOutputs& operator=(const RunOutputs&) = delete;
 
   /// Writes every stream that is due at the solver's time (or, with `force`, every stream that
-  /// has not written this time yet).
+  /// has not written this time yet). A stream whose write is given up on the stop check is
+  /// skipped (nothing of it written, its schedule unchanged) and the others are written; then
+  /// io::Cancelled is thrown.
   void write(const Solver& s, bool force);
   /// The earliest next output time, capped at t_end.
   real next_event(real t_end) const;

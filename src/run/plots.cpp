@@ -1,6 +1,7 @@
 #include "particula/run/plots.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <cerrno>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -16,10 +17,15 @@ namespace particula {
 
 namespace {
 
+/// Returned by run_program when `stop` asked to give up (the child was terminated).
+constexpr int kStopped = -2;
+
 /// Runs argv[0] (searched on the PATH) with its output appended to `log_file` (or inherited,
 /// when empty; `silent` sends it to /dev/null). Returns the exit status, or -1 when it could not
-/// run or ended on a signal.
-int run_program(const std::vector<std::string>& args, const std::filesystem::path& log_file, bool silent = false) {
+/// run or ended on a signal. With `stop`, polled every 20 ms while the child runs: when it returns
+/// true the child is sent SIGTERM and kStopped is returned once it has ended.
+int run_program(const std::vector<std::string>& args, const std::filesystem::path& log_file, bool silent = false,
+                const std::function<bool()>& stop = {}) {
   std::vector<char*> argv;
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
@@ -35,8 +41,21 @@ int run_program(const std::vector<std::string>& args, const std::filesystem::pat
   posix_spawn_file_actions_destroy(&actions);
   if (err != 0) return -1;
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return -1;
+  bool stopped = false;
+  for (;;) {
+    const pid_t r = ::waitpid(pid, &status, stop && !stopped ? WNOHANG : 0);
+    if (r == pid) break;
+    if (r < 0 && errno != EINTR) return -1;
+    if (r == 0) {
+      if (stop()) {
+        ::kill(pid, SIGTERM);
+        stopped = true;
+      } else {
+        ::usleep(20000);
+      }
+    }
+  }
+  if (stopped) return kStopped;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
@@ -49,13 +68,17 @@ std::string plot_python() {
   return std::filesystem::exists("/usr/bin/python3", ec) ? "/usr/bin/python3" : "python3";
 }
 
-PlotOutcome draw_plots(const std::filesystem::path& run_dir, const std::filesystem::path& log_file) {
+PlotOutcome draw_plots(const std::filesystem::path& run_dir, const std::filesystem::path& log_file,
+                       const std::function<bool()>& stop) {
   std::error_code ec;
   if (!std::filesystem::exists(plot_script(), ec)) return PlotOutcome::NoScript;
   const std::string python = plot_python();
-  if (run_program({python, "-c", "import matplotlib"}, {}, true) != 0) return PlotOutcome::NoMatplotlib;
-  return run_program({python, plot_script().string(), run_dir.string()}, log_file) == 0 ? PlotOutcome::Drawn
-                                                                                       : PlotOutcome::Failed;
+  const int check = run_program({python, "-c", "import matplotlib"}, {}, true, stop);
+  if (check == kStopped) return PlotOutcome::Interrupted;
+  if (check != 0) return PlotOutcome::NoMatplotlib;
+  const int drawn = run_program({python, plot_script().string(), run_dir.string()}, log_file, false, stop);
+  if (drawn == kStopped) return PlotOutcome::Interrupted;
+  return drawn == 0 ? PlotOutcome::Drawn : PlotOutcome::Failed;
 }
 
 int plot_command(const std::filesystem::path& run_dir) {
@@ -78,6 +101,7 @@ int plot_command(const std::filesystem::path& run_dir) {
       std::fprintf(stderr, "error: no plots drawn: %s is missing\n", plot_script().string().c_str());
       return 1;
     case PlotOutcome::Failed: break;
+    case PlotOutcome::Interrupted: return 130;
   }
   std::fprintf(stderr, "error: %s failed on '%s' (its messages are above)\n", plot_script().string().c_str(),
                run_dir.string().c_str());

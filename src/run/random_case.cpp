@@ -1,4 +1,5 @@
 #include "particula/run/random_case.hpp"
+#include "particula/run/runner.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -245,11 +246,29 @@ int generate_command(std::uint64_t seed, const std::filesystem::path& out) {
     std::fputs(text.c_str(), stdout);
     return 0;
   }
+  // An existing file is replaced only when particula generated it (its first line says so).
+  std::error_code ec;
+  if (std::filesystem::exists(std::filesystem::symlink_status(out, ec))) {
+    std::string first;
+    if (std::filesystem::is_regular_file(std::filesystem::symlink_status(out, ec))) {
+      try {
+        first = io::read_file(out).substr(0, 64);
+      } catch (const io::IoError&) {
+      }
+    }
+    if (first.rfind("# Random case of seed ", 0) != 0) {
+      std::fprintf(stderr,
+                   "error: --out '%s' already exists and is not a case particula generated: it is not replaced "
+                   "(choose another name)\n",
+                   out.string().c_str());
+      return 2;
+    }
+  }
   try {
     io::write_file_atomic(out, text);
-  } catch (const io::IoError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 2;
+  } catch (const io::WriteError& e) {
+    std::fprintf(stderr, "error: I/O failure: %s\n", e.what());
+    return kExitIoFailure;
   }
   std::fprintf(stderr, "wrote %s\n", out.string().c_str());
   return 0;

@@ -20,6 +20,7 @@
 #include "particula/run/limits.hpp"
 #include "particula/run/observers.hpp"
 #include "particula/run/plots.hpp"
+#include "particula/run/run_dir.hpp"
 #include "particula/scene/scene.hpp"
 #include "particula/solver/device_backend.hpp"
 
@@ -40,8 +41,11 @@ extern "C" void on_signal(int sig) {
   }
 }
 
-/// Installs SIGINT/SIGTERM handlers for the lifetime of a run; the loop checks the flag
-/// between steps, so a step is never left half-done.
+/// Whether SIGINT or SIGTERM asked the run to stop (polled between steps and by long outputs).
+bool stop_requested() { return g_signal.load() != 0; }
+
+/// Installs SIGINT/SIGTERM handlers for the lifetime of a command; the loop checks the flag
+/// between steps, so a step is never left half-done, and long outputs poll it.
 struct SignalGuard {
   void (*old_int)(int), (*old_term)(int);
   SignalGuard() {
@@ -56,21 +60,6 @@ struct SignalGuard {
   SignalGuard(const SignalGuard&) = delete;
   SignalGuard& operator=(const SignalGuard&) = delete;
 };
-
-/// Prepares the run directory: refuses an existing one unless --overwrite (exit 2).
-fs::path prepare_run_dir(const Case& c, const RunOptions& opt) {
-  const fs::path dir = opt.out_dir.empty() ? fs::path("runs") / c.name : opt.out_dir;
-  std::error_code ec;
-  if (fs::exists(dir, ec)) {
-    if (!opt.overwrite)
-      throw io::IoError(fmt::format("run directory '{}' already exists (use --overwrite to replace it)", dir.string()));
-    fs::remove_all(dir, ec);
-    if (ec) throw io::IoError(fmt::format("cannot remove run directory '{}': {}", dir.string(), ec.message()));
-  }
-  fs::create_directories(dir, ec);
-  if (ec) throw io::IoError(fmt::format("cannot create run directory '{}': {}", dir.string(), ec.message()));
-  return dir;
-}
 
 /// The log file and the messages of a run (echoed to stderr unless quiet).
 struct Reporter {
@@ -91,7 +80,9 @@ struct Reporter {
 /// What `run` and `resume` set up for the shared loop.
 struct Session {
   Case c;
+  std::uint64_t case_hash = 0;  // the run's case identity (marker and every checkpoint)
   fs::path dir;
+  RunDirectory* run_dir = nullptr;  // `run`: the new run directory, committed once the run has started
   std::unique_ptr<Solver> solver;
   std::unique_ptr<RunOutputs> outputs;
   std::size_t n_fluid = 0;
@@ -105,7 +96,16 @@ void save_checkpoint(const fs::path& file, const Session& s) {
   const real t = solver.time();
   const std::int64_t step = solver.step_count();
   const std::vector<OutputMark> marks = s.outputs->marks();
-  write_checkpoint(file, CheckpointView{toml, t, step, solver.counters(), marks, solver.particles(), solver.groups()});
+  write_checkpoint(file,
+                   CheckpointView{toml, s.case_hash, t, step, solver.counters(), marks, solver.particles(), solver.groups()});
+}
+
+/// The run has written its initial state: when it replaces an old run directory, a checkpoint
+/// is written too (so the new run can be resumed) and then the old directory is deleted.
+void mark_started(Session& s, Reporter& rep) {
+  if (!s.run_dir || s.run_dir->committed()) return;
+  if (s.run_dir->replacing()) save_checkpoint(checkpoint_path(s.dir), s);
+  if (auto warning = s.run_dir->commit()) rep.tell("warning: " + *warning);
 }
 
 /// The time loop shared by `run` and `resume`: steps to time.end, writes the outputs on their
@@ -118,12 +118,24 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   RunOutputs& out = *s.outputs;
   const fs::path checkpoint_file = checkpoint_path(s.dir);
 
-  SignalGuard signals;
   io::ProgressOptions popt;
   popt.quiet = rep.quiet;
   io::ProgressLine progress(&rep.log, popt);
   const auto wall0 = std::chrono::steady_clock::now();
-  if (!s.resumed) out.write(solver, true);  // the initial state (a resumed run has it already)
+  // A long output given up on a stop request (io::Cancelled) ends the run as interrupted; what
+  // it would have written is written by the resumed run.
+  bool cancelled = false;
+  auto write_outputs = [&](bool force) {
+    try {
+      out.write(solver, force);
+    } catch (const io::Cancelled&) {
+      cancelled = true;
+    }
+  };
+  // The initial state; a resumed run has it already, but writes what was due at its checkpoint
+  // and given up then.
+  write_outputs(!s.resumed);
+  mark_started(s, rep);
   const real ci = c.checkpoint_interval;
   real next_checkpoint = ci > 0 ? run_detail::next_multiple(solver.time(), ci) : std::numeric_limits<real>::infinity();
   std::string status = "completed";
@@ -135,7 +147,7 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
       status = "max_steps";
       break;
     }
-    if (g_signal.load() != 0) {
+    if (stop_requested() || cancelled) {
       status = "interrupted";
       exit_code = 130;
       break;
@@ -144,7 +156,7 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
     particle_steps += static_cast<double>(solver.particle_count());
     interactions += static_cast<double>(solver.last_pair_count());
     if (failure) {
-      out.write(solver, true);
+      write_outputs(true);
       const fs::path diag = checkpoint_file.parent_path() / kFailureCheckpoint;
       save_checkpoint(diag, s);
       const std::string msg = fmt::format(
@@ -158,7 +170,8 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
       exit_code = 3;
       break;
     }
-    out.write(solver, false);
+    write_outputs(false);
+    if (cancelled) continue;  // interrupted: the checkpoint is written below
     if (solver.time() >= next_checkpoint - 1e-9 * ci) {
       save_checkpoint(checkpoint_file, s);
       next_checkpoint = run_detail::next_multiple(solver.time(), ci);
@@ -169,7 +182,7 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   }
   progress.finish();
   if (exit_code != 3) {  // the final state (a failure already wrote it) and the restartable checkpoint
-    out.write(solver, true);
+    write_outputs(true);  // after a stop request, long outputs are skipped at once
     save_checkpoint(checkpoint_file, s);
   }
   if (exit_code == 130)
@@ -202,7 +215,7 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   summary.set("guard_events", guards);
   for (const auto& p : out.probes())
     if (auto e = p->last_error()) summary.set("probe_error_" + p->spec().name, *e);
-  const auto particle_error = particle_profile_error(solver, c);
+  const auto particle_error = particle_profile_error(solver, c, stop_requested);
   if (particle_error) summary.set("profile_error", *particle_error);
   io::write_file_atomic(s.dir / "summary.json", summary.dump());
 
@@ -221,7 +234,7 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
       rep.say(fmt::format("probe '{}' (Shepard-interpolated): L2 error of vx {:.4f} % of the peak speed at t = {:.6g} s",
                           p->spec().name, 100 * *e, solver.time()));
   if (exit_code == 0 && plots) {
-    switch (draw_plots(s.dir, s.dir / "log.txt")) {
+    switch (draw_plots(s.dir, s.dir / "log.txt", stop_requested)) {
       case PlotOutcome::Drawn:
         if (!rep.quiet) rep.say(fmt::format("plots in {}", (s.dir / "plots").string()));
         break;
@@ -230,6 +243,12 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
         rep.say("note: no plots drawn (python3-matplotlib is not installed; scripts/install-deps installs it)");
         break;
       case PlotOutcome::Failed: rep.say("warning: plotting failed (see log.txt); the data files are complete"); break;
+      case PlotOutcome::Interrupted:
+        rep.tell(fmt::format("interrupted while drawing the plots: the data files are complete; draw them with: "
+                             "particula plot {}",
+                             s.dir.string()));
+        exit_code = 130;
+        break;
     }
   }
   rep.say(fmt::format("results in {}", s.dir.string()));
@@ -239,6 +258,51 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
 int bad_input(const std::exception& e) {
   std::fprintf(stderr, "error: %s\n", e.what());
   return 2;
+}
+
+/// Undoes a `run` that had not started yet (the new run directory removed, the old one put back).
+void undo_run_dir(Session& s) {
+  if (!s.run_dir || s.run_dir->committed()) return;
+  const bool replacing = s.run_dir->replacing();
+  if (auto warning = s.run_dir->rollback())
+    std::fprintf(stderr, "warning: %s\n", warning->c_str());
+  else if (replacing)
+    std::fprintf(stderr, "note: the previous run directory '%s' is left as it was\n", s.dir.string().c_str());
+}
+
+/// Bad input found after the run directory was made: undone if the run had not started.
+int bad_input(const std::exception& e, Session& s) {
+  const int code = bad_input(e);
+  undo_run_dir(s);
+  return code;
+}
+
+/// A file-system failure (disk full, permission denied, ...): exit code kExitIoFailure, in
+/// log.txt when the run directory is kept (the run had started; its last checkpoint stays).
+int io_failure(const io::WriteError& e, Session& s, Reporter* rep) {
+  const std::string msg = fmt::format("I/O failure: {}", e.what());
+  std::fprintf(stderr, "error: %s\n", msg.c_str());
+  if (s.run_dir && !s.run_dir->committed()) {
+    undo_run_dir(s);
+    return kExitIoFailure;
+  }
+  if (rep) rep->log.record("error: " + msg);
+  std::error_code ec;
+  if (!s.dir.empty() && fs::exists(checkpoint_path(s.dir), ec)) {
+    const std::string hint = fmt::format("the last checkpoint ({}) is kept: once the cause is fixed, continue with: "
+                                         "particula resume {}",
+                                         checkpoint_path(s.dir).string(), s.dir.string());
+    std::fprintf(stderr, "%s\n", hint.c_str());
+    if (rep) rep->log.record(hint);
+  }
+  return kExitIoFailure;
+}
+
+/// A stop request before the time loop: nothing is run.
+int interrupted_before_start(Session& s, Reporter& rep, const char* what) {
+  rep.tell(fmt::format("interrupted before the run started: {}", what));
+  undo_run_dir(s);
+  return 130;
 }
 
 }  // namespace
@@ -256,30 +320,54 @@ bool backend_usable(const std::string& backend) {
 int run_command(const fs::path& case_file, const RunOptions& opt) {
   Session s;
   if (!backend_usable(opt.backend)) return 2;
+  SignalGuard signals;
+  std::unique_ptr<RunDirectory> run_dir;
   try {
     s.c = load_case(case_file, opt.overrides);
     check_case_size(s.c);  // before anything is allocated or written
-    s.dir = prepare_run_dir(s.c, opt);
+    s.case_hash = case_identity_hash(resolved_case_toml(s.c));
+    run_dir = std::make_unique<RunDirectory>(opt.out_dir.empty() ? fs::path("runs") / s.c.name : opt.out_dir,
+                                             opt.overwrite, RunMarker{MarkedKind::Run, s.case_hash});
+    s.dir = run_dir->path();
+    s.run_dir = run_dir.get();
   } catch (const CaseError& e) {
     return bad_input(e);
+  } catch (const RunDirRefused& e) {
+    return bad_input(e);
+  } catch (const io::WriteError& e) {
+    return io_failure(e, s, nullptr);
   } catch (const io::IoError& e) {
     return bad_input(e);
   }
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  std::unique_ptr<Reporter> rep;
   try {
-    Reporter rep(s.dir / "log.txt", opt.quiet);
+    rep = std::make_unique<Reporter>(s.dir / "log.txt", opt.quiet);
+    for (const auto& note : run_dir->notes()) rep->tell(note);
     io::write_file_atomic(s.dir / "case.toml", resolved_case_toml(s.c));
     Scene scene = build_scene(s.c);
     s.n_fluid = scene.particles.size() - scene.particles.n_boundary;
-    rep.say(fmt::format("particula: case '{}' from {}, {} particles ({} fluid, {} boundary), {} threads, backend {}",
-                        s.c.name, case_file.string(), scene.particles.size(), s.n_fluid, scene.particles.n_boundary,
-                        omp_get_max_threads(), opt.backend));
+    rep->say(fmt::format("particula: case '{}' from {}, {} particles ({} fluid, {} boundary), {} threads, backend {}",
+                         s.c.name, case_file.string(), scene.particles.size(), s.n_fluid, scene.particles.n_boundary,
+                         omp_get_max_threads(), opt.backend));
+    if (run_dir->replacing())
+      rep->say(fmt::format("replacing the run directory {}: the old run is kept aside in {} until this run has "
+                           "written its initial state and a checkpoint",
+                           s.dir.string(), run_dir->aside().string()));
     scene.params.cuda = opt.backend == "cuda";
     s.solver = std::make_unique<Solver>(scene.params, scene.domain, std::move(scene.particles), std::move(scene.groups));
-    s.outputs = std::make_unique<RunOutputs>(s.dir, s.c);
-    return run_loop(s, rep, opt.plots);
+    s.outputs = std::make_unique<RunOutputs>(s.dir, s.c, stop_requested);
+    if (stop_requested())
+      return interrupted_before_start(s, *rep,
+                                      run_dir->replacing() ? "nothing written; the previous run directory is restored"
+                                                           : "nothing written");
+    return run_loop(s, *rep, opt.plots);
+  } catch (const CaseError& e) {
+    return bad_input(e, s);
+  } catch (const io::WriteError& e) {
+    return io_failure(e, s, rep.get());
   } catch (const io::IoError& e) {
-    return bad_input(e);
+    return bad_input(e, s);
   }
 }
 
@@ -300,10 +388,24 @@ int resume_command(const ResumeOptions& opt) {
       return 2;
     }
   if (!backend_usable(opt.backend)) return 2;
+  SignalGuard signals;
   const fs::path file = checkpoint_path(opt.run_dir);
   std::error_code ec;
   if (!fs::is_directory(opt.run_dir, ec)) {
     std::fprintf(stderr, "error: run directory '%s' does not exist\n", opt.run_dir.string().c_str());
+    return 2;
+  }
+  std::optional<RunMarker> marker;
+  try {
+    marker = read_marker(opt.run_dir);
+  } catch (const io::IoError& e) {
+    return bad_input(e);
+  }
+  if (!marker || marker->kind != MarkedKind::Run) {
+    std::fprintf(stderr,
+                 "error: '%s' is not a particula run directory (it has no %s marker with a case; run directories are "
+                 "made by 'particula run')\n",
+                 opt.run_dir.string().c_str(), kRunMarker);
     return 2;
   }
   if (!fs::exists(file, ec)) {
@@ -315,7 +417,13 @@ int resume_command(const ResumeOptions& opt) {
   Checkpoint k;
   try {
     k = read_checkpoint(file);
+    if (k.case_hash != marker->case_hash)
+      throw io::IoError(fmt::format(
+          "checkpoint '{}' was written for another case (case identity {:016x}) than the one run directory '{}' was "
+          "created for ({:016x}, in its {} marker): it does not belong to this run; resume refused",
+          file.string(), k.case_hash, opt.run_dir.string(), marker->case_hash, kRunMarker));
     s.c = load_case_text(k.case_toml, file, opt.overrides);
+    check_checkpoint_fits_case(k, s.c, file);
   } catch (const CaseError& e) {
     return bad_input(e);
   } catch (const io::IoError& e) {
@@ -326,25 +434,37 @@ int resume_command(const ResumeOptions& opt) {
     return 2;
   }
   s.dir = opt.run_dir;
+  s.case_hash = k.case_hash;
   s.resumed = true;
   s.t_start = k.time;
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  std::unique_ptr<Reporter> rep;
   try {
-    Reporter rep(s.dir / "log.txt", opt.quiet);
+    rep = std::make_unique<Reporter>(s.dir / "log.txt", opt.quiet);
+    const auto removed = remove_stale_temp_files(s.dir);
+    if (!removed.empty()) {
+      std::string names;
+      for (const auto& r : removed) names += (names.empty() ? "" : ", ") + r.lexically_relative(s.dir).string();
+      rep->say(fmt::format("removed {} temporary file(s) left by a particula that was killed while writing: {}",
+                           removed.size(), names));
+    }
     io::write_file_atomic(s.dir / "case.toml", resolved_case_toml(s.c));
     const Particles& P = k.particles;
     s.n_fluid = P.size() - P.n_boundary;
-    rep.say(fmt::format("particula: resuming case '{}' in {} at t = {:.9g} s, step {} ({} particles), to t = {:.6g} s, "
-                        "{} threads",
-                        s.c.name, s.dir.string(), k.time, k.step, P.size(), s.c.t_end, omp_get_max_threads()));
+    rep->say(fmt::format("particula: resuming case '{}' in {} at t = {:.9g} s, step {} ({} particles), to t = {:.6g} s, "
+                         "{} threads",
+                         s.c.name, s.dir.string(), k.time, k.step, P.size(), s.c.t_end, omp_get_max_threads()));
     const Domain domain{s.c.domain_min, s.c.domain_max, s.c.periodic_x, s.c.periodic_y};
     PhysicsParams prm = physics_params(s.c);
     prm.cuda = opt.backend == "cuda";
     s.solver = std::make_unique<Solver>(prm, domain, std::move(k.particles), std::move(k.groups),
                                         SolverStart::Restart, k.time, k.step);
     s.solver->set_counters(k.counters);
-    s.outputs = std::make_unique<RunOutputs>(s.dir, s.c, k.marks, k.time);
-    return run_loop(s, rep, opt.plots);
+    s.outputs = std::make_unique<RunOutputs>(s.dir, s.c, k.marks, k.time, stop_requested);
+    if (stop_requested()) return interrupted_before_start(s, *rep, "the run directory is as it was");
+    return run_loop(s, *rep, opt.plots);
+  } catch (const io::WriteError& e) {
+    return io_failure(e, s, rep.get());
   } catch (const io::IoError& e) {
     return bad_input(e);
   }

@@ -15,6 +15,7 @@
 #include "particula/io/vtk.hpp"
 #include "particula/run/limits.hpp"
 #include "particula/run/robustness.hpp"
+#include "particula/run/run_dir.hpp"
 #include "particula/run/runner.hpp"
 #include "particula/solver/particles.hpp"
 
@@ -662,12 +663,6 @@ void print_result(const EntryResult& r) {
 }  // namespace
 
 int validate_command(const ValidateOptions& opt) {
-  std::error_code ec;
-  fs::create_directories(opt.out_dir, ec);
-  if (ec || !fs::is_directory(opt.out_dir, ec)) {
-    std::fprintf(stderr, "error: cannot create the validation directory '%s'\n", opt.out_dir.string().c_str());
-    return 2;
-  }
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   std::vector<ValidationEntry> entries = validation_entries();
   for (const auto& name : opt.only)
@@ -675,6 +670,17 @@ int validate_command(const ValidateOptions& opt) {
       std::fprintf(stderr, "error: no validation case '%s'\n", name.c_str());
       return 2;
     }
+  // The output directory: particula's own (a marker) or new or empty; its run directories are
+  // replaced under the rules of `run --overwrite`.
+  try {
+    prepare_validation_dir(opt.out_dir);
+  } catch (const RunDirRefused& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  } catch (const io::WriteError& e) {
+    std::fprintf(stderr, "error: I/O failure: %s\n", e.what());
+    return kExitIoFailure;
+  }
   std::vector<EntryResult> results;
   for (const auto& entry : entries) {
     if (!entry_selected(entry, opt)) continue;
@@ -688,8 +694,8 @@ int validate_command(const ValidateOptions& opt) {
   try {
     io::write_file_atomic(report, report_markdown(results, opt));
   } catch (const io::IoError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 2;
+    std::fprintf(stderr, "error: I/O failure: %s\n", e.what());
+    return kExitIoFailure;
   }
   if (!results.empty() && results.back().exit_code == 130) {
     std::fprintf(stderr, "validate: interrupted; partial report in %s\n", report.string().c_str());

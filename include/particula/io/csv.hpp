@@ -13,12 +13,14 @@
 #include <string_view>
 #include <vector>
 
+#include "particula/io/atomic_file.hpp"
 #include "particula/io/error.hpp"
 
 namespace particula::io {
 
 /// Writes a CSV file row by row, flushing each row to the OS so that a killed run keeps
-/// every complete row. Throws IoError (naming the file and the OS reason) on write failures.
+/// every complete row. Throws WriteError (an IoError naming the file and the OS reason) on
+/// write failures (disk full, ...).
 class CsvWriter {
  public:
   /// Creates (or truncates) `path` and writes the header line. Column names must be non-empty
@@ -39,6 +41,10 @@ class CsvWriter {
   }
   void row(const std::vector<double>& values) { row(std::span<const double>(values)); }
   void row(std::span<const double> values);
+  /// Writes several rows at once (values.size() a multiple of the column count), in one write
+  /// and one flush. With `stop`, polled every few thousand rows while formatting: when it
+  /// returns true nothing is written and io::Cancelled is thrown.
+  void rows(std::span<const double> values, const StopCheck& stop = {});
 
   const std::filesystem::path& path() const { return path_; }
   const std::vector<std::string>& columns() const { return columns_; }

@@ -21,7 +21,7 @@ namespace particula::io {
 class RunLog {
  public:
   RunLog() = default;
-  /// Opens `path` in append mode; throws IoError naming the file when it cannot.
+  /// Opens `path` in append mode; throws WriteError naming the file when it cannot.
   explicit RunLog(const std::filesystem::path& path, bool echo_to_stderr = false);
 
   /// Logs `text` (each of its lines gets a timestamp) and echoes it to stderr when enabled.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "particula/core/types.hpp"
+#include "particula/io/atomic_file.hpp"
 #include "particula/io/error.hpp"
 
 namespace particula::io {
@@ -34,10 +35,12 @@ struct VtkIntArray {
 VtkArray vector_array(std::string name, const std::vector<Vec2>& v);
 
 /// Writes a .vtp file atomically. Every array must hold components * points.size() values
-/// and names must be unique and non-empty (std::invalid_argument otherwise). Throws IoError
-/// when the file cannot be written.
+/// and names must be unique and non-empty (std::invalid_argument otherwise). Throws WriteError
+/// when the file cannot be written. With `stop`, polled between arrays and while writing:
+/// when it returns true nothing is written and io::Cancelled is thrown.
 void write_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points,
-               const std::vector<VtkArray>& arrays, const std::vector<VtkIntArray>& int_arrays = {});
+               const std::vector<VtkArray>& arrays, const std::vector<VtkIntArray>& int_arrays = {},
+               const StopCheck& stop = {});
 
 /// The content of a .vtp file.
 struct VtpData {

@@ -6,11 +6,16 @@
 //   u32       format version
 //   u32       byte-order mark 0x01020304 (values are in the writer's byte order)
 //   u64       payload size in bytes
-//   payload   case TOML text, time, step, SolverCounters, output marks, Particles, RigidGroups
+//   payload   case TOML text, case identity hash, time, step, SolverCounters, Particles,
+//             RigidGroups, output marks
 //   u64       FNV-1a 64 checksum of the payload
 //
 // Reading refuses, with an io::IoError naming the file, a wrong magic, another format
-// version, another byte order, a truncated file, a checksum mismatch and inconsistent arrays.
+// version, another byte order, a truncated file, a checksum mismatch, and content whose parts
+// do not fit each other (array sizes, particle kinds and groups, group ranges and body indices,
+// dummy sources, particle ids, output marks). check_checkpoint_fits_case() then checks it
+// against the case it is resumed with and checks its values, so that a checkpoint, however made,
+// is either refused or safe to run.
 #pragma once
 
 #include <cstddef>
@@ -28,7 +33,7 @@
 namespace particula {
 
 /// Bump when the layout or any field list below changes; older files are then refused.
-inline constexpr std::uint32_t kCheckpointVersion = 5;
+inline constexpr std::uint32_t kCheckpointVersion = 6;
 
 /// When an output stream ("bodies", "snapshots", "probe:<name>") was last written on its
 /// regular schedule. A resumed run drops rows after this time (the extra final-state rows of an
@@ -40,6 +45,7 @@ struct OutputMark {
 
 struct Checkpoint {
   std::string case_toml;  // the resolved case (resolved_case_toml), without overrides applied later
+  std::uint64_t case_hash = 0;  // the run's case identity (case_identity_hash), as in its run directory's marker
   real time = 0;
   std::int64_t step = 0;
   SolverCounters counters;
@@ -51,6 +57,7 @@ struct Checkpoint {
 /// The same content by reference, so that a running solver's state is written without a copy.
 struct CheckpointView {
   const std::string& case_toml;
+  const std::uint64_t& case_hash;
   const real& time;
   const std::int64_t& step;
   const SolverCounters& counters;
@@ -58,6 +65,21 @@ struct CheckpointView {
   const Particles& particles;
   const std::vector<RigidGroup>& groups;
 };
+
+/// The identity of a run's case: the FNV-1a 64 hash of the resolved case text (what particula
+/// writes as case.toml) with the keys `resume` may change (time.end and the [output] table)
+/// taken out, in a canonical TOML form. A run directory records it in its marker when `run`
+/// creates it (run_dir.hpp) and every checkpoint of the run carries it unchanged, so `resume`
+/// can refuse a checkpoint of another case. Throws io::IoError when the text is not TOML.
+std::uint64_t case_identity_hash(std::string_view resolved_case_toml);
+
+/// Checks a decoded checkpoint against the case it is resumed with: its rigid groups must be
+/// the case's walls and then its bodies, in order, with their names and kinds of motion; dummy
+/// particles only with the dummy boundary; every value finite, densities positive, masses not
+/// negative (positive for fluid particles and free bodies), positions near the domain. Throws
+/// io::IoError naming `source` otherwise. (decode_checkpoint checks only the structure, so that a
+/// diagnostic checkpoint of a numerical failure, NaN and all, can still be read.)
+void check_checkpoint_fits_case(const Checkpoint& k, const Case& c, const std::filesystem::path& source);
 
 /// DIR/checkpoint/state.bin, the checkpoint `particula resume DIR` reads.
 std::filesystem::path checkpoint_path(const std::filesystem::path& run_dir);
@@ -68,7 +90,7 @@ std::string encode_checkpoint(const Checkpoint& c);
 /// Parses and checks a checkpoint; `source` names the file in messages. Throws io::IoError.
 Checkpoint decode_checkpoint(std::string_view bytes, const std::filesystem::path& source);
 
-/// Writes `c` to `file` atomically, creating its directory. Throws io::IoError.
+/// Writes `c` to `file` atomically, creating its directory. Throws io::WriteError.
 void write_checkpoint(const std::filesystem::path& file, const CheckpointView& c);
 void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c);
 /// Reads and checks a checkpoint file. Throws io::IoError naming the file.

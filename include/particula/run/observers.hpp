@@ -7,28 +7,34 @@
 #include <vector>
 
 #include "particula/case/case.hpp"
+#include "particula/io/atomic_file.hpp"
 #include "particula/io/csv.hpp"
 #include "particula/io/vtk.hpp"
 #include "particula/solver/solver.hpp"
 
 namespace particula {
 
+// Long writes (a probe of many points, a snapshot of many particles) poll a stop check (the run's
+// SIGINT/SIGTERM flag) and give up with io::Cancelled, having written nothing, when it is set.
+
 /// particles.pvd + particles/step_<n>.vtp snapshots (pressure, velocity, density, kind, body).
 class SnapshotWriter {
  public:
-  explicit SnapshotWriter(std::filesystem::path run_dir);
+  explicit SnapshotWriter(std::filesystem::path run_dir, io::StopCheck stop = {});
   void write(const Solver& s);
 
  private:
   std::filesystem::path dir_;
   io::PvdIndex pvd_;
+  io::StopCheck stop_;
 };
 
 /// One line probe: probe_<name>.csv with time,x,y,vx,vy,p and, when the case declares an
-/// exact solution, vx_exact; also tracks the profile error against it.
+/// exact solution, vx_exact; also tracks the profile error against it. The rows of one time
+/// are written together, or (io::Cancelled) not at all.
 class ProbeWriter {
  public:
-  ProbeWriter(const std::filesystem::path& run_dir, const ProbeSpec& spec, const Case& c);
+  ProbeWriter(const std::filesystem::path& run_dir, const ProbeSpec& spec, const Case& c, io::StopCheck stop = {});
   void write(const Solver& s);
   /// L2 error of vx against the exact solution at the last write, relative to the peak speed
   /// (nullopt without an exact solution).
@@ -41,6 +47,7 @@ class ProbeWriter {
   std::vector<Vec2> points_;
   io::CsvWriter csv_;
   std::optional<double> last_error_;
+  io::StopCheck stop_;
 };
 
 /// bodies.csv: one row per body per output, columns of design.md (f = hydrodynamic force,
@@ -58,8 +65,9 @@ class BodyHistoryWriter {
 /// The exact solution the case declares, evaluated at (y, t); nullopt when it has none.
 std::optional<double> exact_vx(const Case& c, Vec2 x, double t);
 /// L2 error of vx over all fluid particles (at their own positions) against the exact
-/// solution, relative to the peak speed; nullopt without an exact solution.
-std::optional<double> particle_profile_error(const Solver& s, const Case& c);
+/// solution, relative to the peak speed; nullopt without an exact solution, or when `stop`
+/// (polled every few hundred particles: the series is slow at early times) returns true.
+std::optional<double> particle_profile_error(const Solver& s, const Case& c, const io::StopCheck& stop = {});
 /// Peak speed used to normalize profile errors.
 double exact_peak_speed(const Case& c);
 

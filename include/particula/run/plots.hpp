@@ -2,19 +2,22 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace particula {
 
-enum class PlotOutcome { Drawn, NoMatplotlib, NoScript, Failed };
+enum class PlotOutcome { Drawn, NoMatplotlib, NoScript, Failed, Interrupted };
 
 /// The Python interpreter used for plots: /usr/bin/python3 when it exists (Debian's, where
 /// python3-matplotlib installs), else the first python3 on the PATH.
 std::string plot_python();
 
 /// Runs tools/plot_run.py on `run_dir`, appending its output to `log_file` (empty: the
-/// script writes to this process's stdout and stderr).
-PlotOutcome draw_plots(const std::filesystem::path& run_dir, const std::filesystem::path& log_file = {});
+/// script writes to this process's stdout and stderr). With `stop`, polled while the script
+/// runs: when it returns true the script is terminated (Interrupted).
+PlotOutcome draw_plots(const std::filesystem::path& run_dir, const std::filesystem::path& log_file = {},
+                       const std::function<bool()>& stop = {});
 
 /// `particula plot DIR`: exit 2 when DIR is not a run directory or matplotlib is missing,
 /// 1 when the script fails, 0 when the plots are in DIR/plots.

@@ -1,7 +1,7 @@
 // `particula run` and `particula resume`: load a case (or a checkpoint), advance the solver
 // and feed the observers (progress, log, probes, body history, snapshots, checkpoints,
 // summary). Both share one loop. They return the process exit code of the command-line
-// contract (0 ok, 1 internal, 2 bad input, 3 numerical failure, 130 interrupted).
+// contract (0 ok, 1 internal, 2 bad input, 3 numerical failure, 4 I/O failure, 130 interrupted).
 #pragma once
 
 #include <filesystem>
@@ -9,6 +9,10 @@
 #include <vector>
 
 namespace particula {
+
+/// Exit code of a file-system failure while writing (disk full, permission denied, file too
+/// large): not bad input; logged to log.txt when the run directory is kept.
+inline constexpr int kExitIoFailure = 4;
 
 struct RunOptions {
   std::filesystem::path out_dir;  // empty: runs/<case name>

@@ -1,0 +1,253 @@
+// The user's files and runs through the command line (issue 15): --overwrite replaces only a run
+// directory particula made (never '.', '..', a directory or file of the user's, a link) and keeps
+// the old run until the new one has started; a file-system failure is exit code 4, logged, and
+// the run resumes from its last checkpoint; temporary files of a killed particula are removed on
+// resume; SIGTERM during a long output ends the run within a second with a checkpoint, and the
+// resumed run writes what the interrupted one gave up; validate and generate write only into
+// what is theirs.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli_process.hpp"
+#include "particula/run/run_dir.hpp"
+
+namespace fs = std::filesystem;
+using cli_test::cli;
+using cli_test::fresh_dir;
+using cli_test::read_text;
+using cli_test::write_text;
+
+namespace {
+
+const fs::path kCouette = fs::path(PARTICULA_SOURCE_DIR) / "cases" / "couette.toml";
+
+/// `run` of a short coarse couette into `out`.
+std::vector<std::string> couette(const std::string& out, const std::string& t_end, std::vector<std::string> extra = {}) {
+  std::vector<std::string> a{"run", kCouette.string(), "--out", out, "--quiet", "--no-plots", "--threads", "1",
+                             "--set", "time.end=" + t_end};
+  a.insert(a.end(), extra.begin(), extra.end());
+  return a;
+}
+
+/// Every path under `dir` (links not followed) with its size and content: a before/after picture.
+std::map<std::string, std::string> tree(const fs::path& dir) {
+  std::map<std::string, std::string> t;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    const auto st = e.symlink_status();
+    t[e.path().lexically_relative(dir).string()] =
+        fs::is_symlink(st) ? "link:" + fs::read_symlink(e.path()).string()
+        : fs::is_regular_file(st) ? read_text(e.path())
+                                  : "dir";
+  }
+  return t;
+}
+
+/// Runs particula with a file-size limit (ulimit -f, 512-byte blocks): writes beyond it fail with
+/// EFBIG ("File too large"), the same code path as a full disk (SIGXFSZ ignored so that the write
+/// returns the error).
+cli_test::Ended cli_with_file_limit(int blocks, const std::vector<std::string>& args) {
+  std::vector<std::string> sh{"-c", "trap '' XFSZ; ulimit -f " + std::to_string(blocks) + "; exec \"$0\" \"$@\"",
+                              PARTICULA_BINARY};
+  sh.insert(sh.end(), args.begin(), args.end());
+  return cli_test::Child("sh", sh).wait();
+}
+
+/// A process id that is not running (a child that has ended and been reaped).
+long dead_pid() {
+  const pid_t pid = ::fork();
+  if (pid == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return static_cast<long>(pid);
+}
+
+}  // namespace
+
+TEST(CliFiles, OverwriteRefusesWhatParticulaDidNotWrite) {
+  const fs::path dir = fresh_dir("files_refuse");
+  const fs::path work = dir / "work";
+  ASSERT_EQ(cli(couette((dir / "run").string(), "0.01")).code, 0);
+  fs::create_directories(work / "thesis");
+  write_text(work / "thesis" / "chapter1.tex", "my thesis\n");
+  write_text(work / "notes.txt", "notes\n");
+  fs::create_directory_symlink(dir / "run", work / "link_to_run");
+  const auto before = tree(dir);
+  // Each is refused with exit code 2 and a reason; nothing anywhere under `dir` changes.
+  const std::vector<std::pair<std::string, std::string>> refused{
+      {".", "working directory"},
+      {"..", "working directory"},
+      {"thesis", "not a particula run directory"},
+      {"notes.txt", "is a file"},
+      {"link_to_run", "symbolic link"},
+      {(work / "thesis").string(), "not a particula run directory"},
+  };
+  for (const auto& [out, reason] : refused) {
+    // Run from inside `work`, so that '.' and '..' are the working directory and its parent.
+    const auto r = cli_test::Child("sh", {"-c", "cd \"$0\" && exec \"$@\"", work.string(), PARTICULA_BINARY, "run",
+                                          kCouette.string(), "--out", out, "--overwrite", "--quiet", "--no-plots",
+                                          "--set", "time.end=0.01"})
+                       .wait();
+    EXPECT_EQ(r.code, 2) << out << ": " << r.output;
+    EXPECT_NE(r.output.find(reason), std::string::npos) << out << ": " << r.output;
+    EXPECT_TRUE(tree(dir) == before) << "--out " << out << " changed something";
+  }
+  // A run directory holding a file of the user's is not replaced either.
+  write_text(dir / "run" / "my_analysis.py", "print(1)\n");
+  const auto before_run = tree(dir);
+  const auto r = cli(couette((dir / "run").string(), "0.01", {"--overwrite"}));
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("my_analysis.py"), std::string::npos) << r.output;
+  EXPECT_TRUE(tree(dir) == before_run);
+  // Without --overwrite an existing directory is refused, naming why --overwrite would not help.
+  const auto plain = cli(couette((work / "thesis").string(), "0.01"));
+  EXPECT_EQ(plain.code, 2) << plain.output;
+  EXPECT_NE(plain.output.find("not a particula run directory"), std::string::npos) << plain.output;
+}
+
+TEST(CliFiles, OverwriteReplacesARunDirectoryAndLeavesNothingAside) {
+  const fs::path dir = fresh_dir("files_replace");
+  ASSERT_EQ(cli(couette((dir / "run").string(), "0.01")).code, 0);
+  const auto r = cli(couette((dir / "run").string(), "0.02", {"--overwrite"}));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(read_text(dir / "run" / "case.toml").find("end = 0.02"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "run" / particula::kRunMarker));
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  EXPECT_EQ(names, std::vector<std::string>{"run"}) << "the old run moved aside is deleted";
+  EXPECT_NE(read_text(dir / "run" / "log.txt").find("replacing the run directory"), std::string::npos);
+}
+
+TEST(CliFiles, FailedOverwriteLeavesTheOldRunAsItWas) {
+  // The new run cannot write its case.toml (a 1 KiB file-size limit): exit 4, and the old run
+  // directory is back, byte for byte, with nothing of the new one left.
+  const fs::path dir = fresh_dir("files_failed_replace");
+  ASSERT_EQ(cli(couette((dir / "run").string(), "0.01")).code, 0);
+  const auto before = tree(dir);
+  const auto r = cli_with_file_limit(2, couette((dir / "run").string(), "0.02", {"--overwrite"}));
+  EXPECT_EQ(r.code, 4) << r.output;
+  EXPECT_NE(r.output.find("I/O failure"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("File too large"), std::string::npos) << r.output;
+  EXPECT_TRUE(tree(dir) == before) << r.output;
+}
+
+TEST(CliFiles, WriteFailureIsExitFourLoggedAndTheRunResumes) {
+  // walls.csv outgrows a 50 KiB file-size limit mid-run (as on a full disk): exit 4 with the file
+  // and the OS reason, in log.txt too; resumed without the limit, the run ends as an
+  // uninterrupted one would, bitwise.
+  const fs::path dir = fresh_dir("files_write_failure");
+  const std::vector<std::string> set{"--set", "output.interval=0.001", "--set", "output.checkpoint_interval=0.01",
+                                     "--set", "output.snapshots=false"};
+  ASSERT_EQ(cli(couette((dir / "full").string(), "0.25", set)).code, 0);
+  const auto r = cli_with_file_limit(100, couette((dir / "cut").string(), "0.25", set));
+  ASSERT_EQ(r.code, 4) << r.output;
+  EXPECT_NE(r.output.find("I/O failure: cannot write"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("walls.csv"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("particula resume"), std::string::npos) << r.output;
+  const std::string log = read_text(dir / "cut" / "log.txt");
+  EXPECT_NE(log.find("error: I/O failure: cannot write"), std::string::npos) << log;
+  const auto resumed = cli({"resume", (dir / "cut").string(), "--quiet", "--no-plots", "--threads", "1"});
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  for (const char* f : {"walls.csv", "probe_profile.csv"})
+    EXPECT_TRUE(read_text(dir / "full" / f) == read_text(dir / "cut" / f)) << f;
+}
+
+TEST(CliFiles, UncreatableRunDirectoryIsAnIoFailure) {
+  // A directory where this user may not create anything: /sys for root, a read-only one otherwise.
+  fs::path out;
+  if (::geteuid() == 0) {
+    out = "/sys/particula_cannot_create_this";
+  } else {
+    const fs::path dir = fresh_dir("files_readonly");
+    fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
+    out = dir / "run";
+  }
+  std::error_code ec;
+  if (fs::create_directory(out, ec) || ec == std::errc::no_such_file_or_directory) {
+    fs::remove(out, ec);
+    GTEST_SKIP() << "this machine lets " << out << " be created";
+  }
+  const auto r = cli(couette(out.string(), "0.01"));
+  EXPECT_EQ(r.code, 4) << r.output;
+  EXPECT_NE(r.output.find("cannot create run directory"), std::string::npos) << r.output;
+}
+
+TEST(CliFiles, ResumeRemovesStaleTemporaryFilesOnly) {
+  const fs::path dir = fresh_dir("files_stale_temp");
+  const fs::path run = dir / "run";
+  ASSERT_EQ(cli(couette(run.string(), "0.01")).code, 0);
+  const std::string dead = std::to_string(dead_pid()), alive = std::to_string(::getpid());
+  const std::vector<fs::path> stale{run / "checkpoint" / ("state.bin.tmp." + dead),
+                                    run / "particles" / ("step_00000012.vtp.tmp." + dead),
+                                    run / ("summary.json.tmp." + dead), run / ("particles.pvd.tmp." + dead)};
+  const std::vector<fs::path> kept{run / "checkpoint" / ("state.bin.tmp." + alive),  // a running process's
+                                   run / ("my_data.csv.tmp." + dead),                // not a particula file
+                                   run / "checkpoint" / "state.bin.tmp.notapid", run / "notes.tmp"};
+  for (const auto& p : stale) write_text(p, "partial");
+  for (const auto& p : kept) write_text(p, "keep");
+  const auto r = cli({"resume", run.string(), "--quiet", "--no-plots", "--set", "time.end=0.02"});
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const auto& p : stale) EXPECT_FALSE(fs::exists(p)) << p;
+  for (const auto& p : kept) EXPECT_EQ(read_text(p), "keep") << p;
+  EXPECT_NE(read_text(run / "log.txt").find("removed 4 temporary file(s)"), std::string::npos);
+}
+
+TEST(CliFiles, SigtermDuringALongOutputEndsWithinASecondAndTheResumedRunWritesIt) {
+  // A probe of 4000 points with the exact solution: its output at t = 0 takes seconds (the series
+  // needs 20000 terms there). SIGTERM during it ends the run within a second, with a checkpoint
+  // and no partial probe rows; the resumed run writes that output first and ends bitwise as an
+  // uninterrupted run.
+  const fs::path dir = fresh_dir("files_sigterm_output");
+  const std::vector<std::string> set{"--set", "probe.0.points=4000", "--set", "output.snapshots=false"};
+  cli_test::Child child(PARTICULA_BINARY, couette((dir / "cut").string(), "0.001", set));
+  const fs::path probe = dir / "cut" / "probe_profile.csv";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(probe) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ASSERT_TRUE(fs::exists(probe));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // well inside the probe's first output
+  const auto t0 = std::chrono::steady_clock::now();
+  child.signal(SIGTERM);
+  const auto cut = child.wait();
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_EQ(cut.code, 130) << cut.output;
+  EXPECT_LT(waited, 1.0) << "SIGTERM honoured within a second";
+  EXPECT_TRUE(fs::exists(dir / "cut" / "checkpoint" / "state.bin"));
+  EXPECT_EQ(read_text(probe), "time,x,y,vx,vy,p,vx_exact\n") << "no partial rows";
+  std::printf("SIGTERM during a long probe output: exit 130 after %.3f s\n", waited);
+
+  const auto resumed = cli({"resume", (dir / "cut").string(), "--quiet", "--no-plots", "--threads", "1"});
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  ASSERT_EQ(cli(couette((dir / "full").string(), "0.001", set)).code, 0);
+  EXPECT_TRUE(read_text(dir / "full" / "probe_profile.csv") == read_text(probe));
+  EXPECT_TRUE(read_text(dir / "full" / "walls.csv") == read_text(dir / "cut" / "walls.csv"));
+}
+
+TEST(CliFiles, ValidateAndGenerateWriteOnlyWhatIsTheirs) {
+  const fs::path dir = fresh_dir("files_validate");
+  fs::create_directories(dir / "mine");
+  write_text(dir / "mine" / "report.md", "my own report\n");
+  write_text(dir / "afile", "x");
+  for (const auto& out : {dir / "mine", dir / "afile"}) {
+    const auto r = cli({"validate", "--out", out.string(), "--case", "couette", "--quick", "--quiet"});
+    EXPECT_EQ(r.code, 2) << r.output;
+  }
+  EXPECT_EQ(read_text(dir / "mine" / "report.md"), "my own report\n");
+  EXPECT_EQ(read_text(dir / "afile"), "x");
+  // generate --out replaces a case it generated, not a file of the user's.
+  const auto mine = cli({"generate", "--seed", "3", "--out", (dir / "afile").string()});
+  EXPECT_EQ(mine.code, 2) << mine.output;
+  EXPECT_EQ(read_text(dir / "afile"), "x");
+  ASSERT_EQ(cli({"generate", "--seed", "3", "--out", (dir / "case.toml").string()}).code, 0);
+  const auto again = cli({"generate", "--seed", "4", "--out", (dir / "case.toml").string()});
+  EXPECT_EQ(again.code, 0) << again.output;
+  EXPECT_NE(read_text(dir / "case.toml").find("seed 4"), std::string::npos);
+}
