@@ -116,7 +116,8 @@ TEST(CaseLoad, MinimalCaseGetsDefaults) {
   EXPECT_EQ(c.boundary, BoundaryModel::SingleLayer);
   EXPECT_EQ(c.normals, NormalModel::Analytic);
   EXPECT_EQ(c.rhie_chow_factor, 1.0);
-  EXPECT_EQ(c.shifting_beta, 0.01);
+  EXPECT_EQ(c.shifting_beta, 0.05);
+  EXPECT_EQ(c.film_gap, 2.0);
   EXPECT_EQ(c.wall_pressure_sweeps, 1);
   EXPECT_EQ(c.perturbation, 0.05);
   EXPECT_EQ(c.seed, 1u);

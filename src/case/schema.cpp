@@ -317,7 +317,7 @@ std::vector<KeySpec> make_schema() {
       real_key("numerics.rhie_chow_factor", "-", def(1.0), closed(0, 10),
                "Scale of the Rhie-Chow pressure stabilisation in the continuity equation.",
                field(&Case::rhie_chow_factor)),
-      real_key("numerics.shifting_beta", "-", def(0.01), closed(0, 0.2),
+      real_key("numerics.shifting_beta", "-", def(0.05), closed(0, 0.2),
                "Strength of particle shifting, which keeps the particle distribution uniform.",
                field(&Case::shifting_beta)),
       real_key("numerics.odd_even_damping", "-", def(0.005), closed(0, 0.05),
@@ -510,11 +510,12 @@ std::vector<SectionSpec> make_sections() {
                     "Discretisation schemes and their coefficients. The defaults are meant to work unchanged: "
                     "they run the shipped cases and the robustness suite of `particula validate --group "
                     "robustness` (untuned cases: piles of bodies, flows past bodies at Re 0.1 to 100, closing "
-                    "gaps; docs/validation.md). Change one only for a reason: `shifting_beta` up (0.02) when a "
-                    "long run at low Reynolds number shows particle clumping or voids in snapshots, down when "
-                    "shifting's smoothing of a sharp velocity gradient matters; `odd_even_damping` up (to 0.01) "
+                    "gaps; docs/validation.md). Change one only for a reason: `shifting_beta` (0.05, the top of the paper's range: "
+                    "lower values let particles pile into chains at the stagnation point between approaching "
+                    "bodies) down to the paper's 0.01-0.02 to reproduce its cases, or when shifting's "
+                    "smoothing of a sharp velocity gradient matters; `odd_even_damping` up (to 0.01) "
                     "if column-wise alternating velocities appear at a high cell Reynolds number c d0 / nu, 0 "
-                    "to reproduce the paper's scheme; `surface_guard` 0 only to study the scheme without it "
+                    "to reproduce the paper's scheme; `surface_guard` and `film_gap` 0 only to study the scheme without them "
                     "(guard_events in summary.json count its interventions: many events mean the flow is "
                     "under-resolved next to a surface); `rhie_chow_factor` above 1 only to reproduce older "
                     "runs; `normals = \"kernel\"` and `laplacian = \"morris\"` and `boundary = \"dummy\"` are "

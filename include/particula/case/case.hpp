@@ -100,7 +100,7 @@ struct Case {
   BoundaryModel boundary = BoundaryModel::SingleLayer;
   NormalModel normals = NormalModel::Analytic;  // P.18 is selectable; see docs/method-notes.md
   real rhie_chow_factor = 1;
-  real shifting_beta = 0.01;
+  real shifting_beta = 0.05;
   real odd_even_damping = 0.005;
   real surface_guard = 0.25;
   real film_gap = 2.0;

@@ -52,7 +52,7 @@ struct PhysicsParams {
   bool kernel_normals = true;  // false: analytic normals
   real rhie_chow_factor = 1;
   real odd_even_damping = 0.005;  // alpha of the velocity odd-even damping, kappa = alpha c h
-  real shifting_beta = 0.01;
+  real shifting_beta = 0.05;
   real surface_guard = 0.25;  // keep-out distance of fluid from surfaces, in d0 (0: off)
   real film_gap = 2.0;        // gap below which fluid between two surfaces is an unresolved film, in d0 (0: off)
   int wall_pressure_sweeps = 1;
