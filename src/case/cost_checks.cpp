@@ -195,18 +195,19 @@ void check_probes(const Case& c, const LoadContext& ctx) {
   }
 }
 
-/// Time steps: time.dt_max not absurdly below the stable step, a bounded number of steps, and
-/// output intervals no shorter than the step (each step is cut short to end on an output time,
-/// so an interval of 1e-300 s would mean 1e300 steps) and a bounded number of outputs.
+/// Time steps: time.dt_max and the output intervals not absurdly below the stable step (each step
+/// is cut short to end on an output time, so an interval of 1e-300 s would mean 1e300 steps), a
+/// bounded number of steps and of outputs. An interval between 1e-3 of the step and the step
+/// only makes the steps shorter (like time.dt_max).
 void check_time_steps(const Case& c, const LoadContext& ctx) {
   const real stable = estimated_dt(c, false), dt = estimated_dt(c, true);
   const std::string about =
       fmt::format("about {:.3g} s at the start, estimated from d0, fluid.c, fluid.nu and the initial speeds", stable);
-  if (c.dt_max > 0 && c.dt_max < kDtMaxFloor * stable)
+  if (c.dt_max > 0 && c.dt_max < kMinStepFraction * stable)
     throw ctx.error("time.dt_max",
                     fmt::format("time.dt_max = {:.3g} s is less than {:g} of the stable time step ({}): it would take "
                                 "about {} steps to time.end = {:.6g} s; leave time.dt_max at 0 (no cap) or raise it",
-                                c.dt_max, kDtMaxFloor, about, count(c.t_end / c.dt_max), c.t_end));
+                                c.dt_max, kMinStepFraction, about, count(c.t_end / c.dt_max), c.t_end));
   double steps = c.t_end / dt;
   if (c.max_steps > 0) steps = std::min(steps, static_cast<double>(c.max_steps));
   if (!(steps <= kMaxSteps)) {
@@ -229,15 +230,19 @@ void check_time_steps(const Case& c, const LoadContext& ctx) {
   for (std::size_t k = 0; k < c.probes.size(); ++k)
     streams.push_back({fmt::format("probe[{}].interval", k), c.probes[k].interval, true});
   for (const Stream& s : streams) {
-    const double outputs = std::min(c.t_end / s.interval, steps);
-    if (s.interval < dt)
+    if (s.interval < kMinStepFraction * dt)
       throw ctx.error(
-          s.key, fmt::format("{} = {:.3g} s is shorter than the time step (about {:.3g} s): {}, about {} of them "
-                             "to time.end = {:.6g} s; use an interval of at least the time step",
-                             s.key, s.interval, dt,
+          s.key, fmt::format("{} = {:.3g} s is less than {:g} of the time step (about {:.3g} s): {}, about {} to "
+                             "time.end = {:.6g} s; use a longer interval",
+                             s.key, s.interval, kMinStepFraction, dt,
                              s.cuts_steps ? "every step would be cut short to end on an output time, one output a step"
                                           : "there would be a checkpoint at every step",
                              count(s.cuts_steps ? c.t_end / s.interval : steps), c.t_end));
+    // A stream that cuts the steps short makes t_end / interval outputs (and steps) even when
+    // that is more than the step count; a checkpoint is written at most once a step.
+    double outputs = c.t_end / s.interval;
+    if (!s.cuts_steps) outputs = std::min(outputs, steps);
+    else if (c.max_steps > 0) outputs = std::min(outputs, static_cast<double>(c.max_steps));
     if (!(outputs <= kMaxOutputs))
       throw ctx.error(s.key, fmt::format("{} = {:.3g} s makes about {} outputs to time.end = {:.6g} s, more than "
                                          "the {:.0e} particula writes per stream; use a longer interval",

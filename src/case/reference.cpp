@@ -40,9 +40,9 @@ A case file is TOML. Rules that hold for every key:
   step, wall forces, accelerations, body masses and speeds) lies within [1e-150, 1e150], so that
   squares and products stay finite non-zero doubles (a case with every number times 1e150 is
   refused); the time step, estimated from d0, `fluid.c`, `fluid.nu` and the initial speeds, gives
-  at most 1e9 steps to `time.end`; `time.dt_max`, when set, is at least 1e-3 of that step; every
-  output interval (`output.*`, `probe[].interval`) is at least one step and gives at most 1e6
-  outputs. The sections below list the checks of walls, probes and bodies.
+  at most 1e9 steps to `time.end`; `time.dt_max` (when set) and every output interval
+  (`output.*`, `probe[].interval`) are at least 1e-3 of that step, and each output stream makes
+  at most 1e6 outputs. The sections below list the checks of walls, probes and bodies.
 
 A minimal case:
 

@@ -32,8 +32,9 @@ inline constexpr double kProbePointsPerD0 = 100;
 inline constexpr double kMaxSteps = 1e9;
 /// Each output stream (outputs, snapshots, checkpoints, each probe) writes at most this often.
 inline constexpr double kMaxOutputs = 1e6;
-/// time.dt_max, when set, is at least this fraction of the stable time step.
-inline constexpr double kDtMaxFloor = 1e-3;
+/// time.dt_max (when set) and every output interval are at least this fraction of the stable
+/// time step.
+inline constexpr double kMinStepFraction = 1e-3;
 
 /// The stable time step at t = 0 estimated from the case alone: P.30-P.31 with the nearest
 /// pair of the perturbed lattice and the largest initial speed (walls, bodies, initial flow),
