@@ -15,7 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
-#include <map>
+#include <ostream>
 #include <set>
 #include <string>
 
@@ -50,6 +50,9 @@ const Coarse kPaper[] = {{"falling_cylinder", "2.5e-4"},
                          {"ellipse_obstacle", "2e-4"},
                          {"shear_migration", "2.5e-4"},
                          {"two_cylinders_shear", "2.5e-4"}};
+
+/// gtest names the parameter by its case.
+void PrintTo(const Coarse& k, std::ostream* os) { *os << k.name << " at d0 = " << k.d0; }
 
 /// Whether any cell of the CSV files in `dir` is NaN or Inf.
 std::string non_finite_output(const fs::path& dir) {
