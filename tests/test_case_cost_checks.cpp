@@ -171,5 +171,7 @@ TEST(CaseTimeSteps, OutputIntervalsAtLeastAThousandthOfTheStep) {
 TEST(CaseCostChecks, ShippedCasesPass) {
   for (const auto& dir : {kCases, kCases / "robustness"})
     for (const auto& e : std::filesystem::directory_iterator(dir))
-      if (e.path().extension() == ".toml") EXPECT_NO_THROW(load_case(e.path())) << e.path();
+      if (e.path().extension() == ".toml") {
+        EXPECT_NO_THROW(load_case(e.path())) << e.path();
+      }
 }

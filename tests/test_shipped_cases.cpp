@@ -89,7 +89,9 @@ TEST_P(TwiceTheEndTime, RunsWithoutNumericalFailure) {
   std::printf("%s: d0 = %s m, time.end = %s s (twice %.6g s): exit %d after %s steps, %.1f s\n", k.name, k.d0,
               end.c_str(), c.t_end, r.code, steps.c_str(), wall);
   EXPECT_EQ(r.code, 0) << k.name << " at d0 = " << k.d0 << " to t = " << end << " s:\n" << r.output;
-  if (r.code == 0) EXPECT_EQ(non_finite_output(out), "") << "a completed run wrote NaN or Inf";
+  if (r.code == 0) {
+    EXPECT_EQ(non_finite_output(out), "") << "a completed run wrote NaN or Inf";
+  }
   fs::remove_all(out.parent_path());
 }
 
@@ -103,7 +105,8 @@ TEST(TwiceTheEndTimeList, EveryShippedCaseIsListed) {
   for (const Coarse& k : kAnalytic) listed.insert(k.name);
   for (const Coarse& k : kPaper) listed.insert(k.name);
   for (const auto& e : fs::directory_iterator(kCases))
-    if (e.path().extension() == ".toml")
+    if (e.path().extension() == ".toml") {
       EXPECT_TRUE(listed.contains(e.path().stem().string()))
           << e.path() << " is shipped: give it a coarse level in tests/test_shipped_cases.cpp";
+    }
 }
