@@ -147,6 +147,33 @@ TEST(CaseBodyErrors, ZeroAreaPolygon) {
                "body[0].vertices", "vertices", "vertices[1] and vertices[2] are the same point");
 }
 
+TEST(CaseBodyErrors, BodyNameAtMost64Characters) {
+  const std::string disc = one_body("name = \"d\"\nshape = \"circle\"\ncenter = [0.01, 0.03]\nradius = 0.002\n"
+                                    "density = 1000\n");
+  EXPECT_NO_THROW(load(with(disc, "name = \"d\"", "name = \"" + std::string(64, 'd') + "\"")));
+  expect_error(with(disc, "name = \"d\"", "name = \"" + std::string(65, 'd') + "\""), "body[0].name", "name = \"ddd",
+               "(65 characters) is too long");
+}
+
+TEST(CaseBodyErrors, PolygonVerticesAtLeastHalfD0Apart) {
+  // Two vertices 1e-8 m apart used to make steps of 5e-11 s (issue 15).
+  const std::string close = one_body(
+      "shape = \"polygon\"\nmotion = \"fixed\"\nvertices = [\n  [0.01, 0.01],\n  [0.012, 0.01],\n"
+      "  [0.012, 0.012],\n  [0.01000001, 0.012],\n  [0.01, 0.012],\n]\n");
+  expect_error(close, "body[0].vertices", "[0.01, 0.012],",
+               "polygon vertices[3] [0.01000001, 0.012] and vertices[4] [0.01, 0.012] are 1e-08 m apart, closer "
+               "than d0/2 = 5e-05 m");
+  // Not neighbours along the outline: a notch whose two sides nearly meet.
+  expect_error(one_body("shape = \"polygon\"\nmotion = \"fixed\"\nvertices = [[0.01, 0.01], [0.014, 0.01], "
+                        "[0.014, 0.014], [0.01202, 0.014], [0.0121, 0.011], [0.0119, 0.011], [0.01198, 0.014], "
+                        "[0.01, 0.014]]\n"),
+               "body[0].vertices", "vertices",
+               "polygon vertices[3] [0.01202, 0.014] and vertices[6] [0.01198, 0.014] are 4e-05 m apart");
+  // Just over d0/2 apart is fine.
+  EXPECT_NO_THROW(load(one_body("shape = \"polygon\"\nmotion = \"fixed\"\nvertices = [[0.01, 0.01], "
+                                "[0.012, 0.01], [0.012, 0.012], [0.01006, 0.012], [0.01, 0.012]]\n")));
+}
+
 TEST(CaseBodyErrors, BodyOutsideTheDomain) {
   expect_error(with(kCase, "center = [0.01, 0.01]", "center = [0.0195, 0.01]"), "body[0].center",
                "center = [0.0195",

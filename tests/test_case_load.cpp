@@ -135,7 +135,8 @@ TEST(CaseLoad, MinimalCaseGetsDefaults) {
 }
 
 TEST(CaseLoad, ChoicesWallsAndProbes) {
-  const std::string text = kMinimal + R"(
+  // Periodic along x: the lid slides along x.
+  const std::string text = with(kMinimal, "max = [1e-3, 1e-3]", "max = [1e-3, 1e-3]\nperiodic = [true, false]") + R"(
 [numerics]
 laplacian = "morris"
 boundary = "dummy"
@@ -339,8 +340,9 @@ TEST(CaseLoadErrors, NonFiniteNumbersAreOutOfRange) {
   expect_error(with(kMinimal, "c = 0.1", "c = inf"), "fluid.c", "c = inf", "finite");
   expect_error(with(kMinimal, "c = 0.1", "c = 0.1\ngravity = [0, -inf]"), "fluid.gravity", "gravity",
                "must be a finite number");
-  // Huge but finite numbers are fine where the range allows them.
-  EXPECT_NO_THROW(load_case_text(with(kMinimal, "c = 0.1", "c = 1e308"), kFile));
+  // Huge but finite numbers pass the key's range, and then the check of the case's scales.
+  expect_error(with(kMinimal, "c = 0.1", "c = 1e308"), "fluid.c", "c = 1e308", "outside [1e-150, 1e+150]");
+  EXPECT_NO_THROW(load_case_text(with(kMinimal, "c = 0.1", "c = 1e3"), kFile));
   // Integers too large for TOML are syntax errors.
   EXPECT_GT(error_of(with(kMinimal, "end = 1", "end = 1\nmax_steps = 99999999999999999999")).line(), 0);
 }
@@ -353,6 +355,29 @@ TEST(CaseLoadErrors, ChoiceNotInListListsTheChoices) {
 TEST(CaseLoadErrors, InvalidName) {
   expect_error(with(kMinimal, "name = \"mini\"", "name = \"my case\""), "name", "name =", "not a valid name");
   expect_error(with(kMinimal, "name = \"mini\"", "name = \"\""), "name", "name =", "not a valid name");
+}
+
+TEST(CaseLoadErrors, NamesAtMost64Characters) {
+  // Names become file names (runs/<name>, probe_<name>.csv) and columns: a 300-character probe name
+  // used to fail with "File name too long" after the run directory was made (issue 15).
+  const std::string ok(64, 'n'), long_name(65, 'n');
+  const std::string walls_probes = kMinimal +
+                                   "\n[[wall]]\nname = \"w\"\nfrom = [0, 0]\nto = [1e-3, 0]\n"
+                                   "\n[[probe]]\nname = \"p\"\nfrom = [5e-4, 0]\nto = [5e-4, 1e-3]\npoints = 11\n"
+                                   "interval = 0.1\n";
+  for (const auto& [key, needle] : {std::pair{"name", "name = \"mini\""}, std::pair{"wall[0].name", "name = \"w\""},
+                                    std::pair{"probe[0].name", "name = \"p\""}}) {
+    const std::string from = needle;
+    EXPECT_NO_THROW(load_case_text(with(walls_probes, from, "name = \"" + ok + "\""), kFile)) << key;
+    expect_error(with(walls_probes, from, "name = \"" + long_name + "\""), key, "name = \"" + long_name,
+                 "'nnnnnnnnnnnnnnnn...' (65 characters) is too long: a name becomes part of file names and "
+                 "columns, at most 64 characters");
+  }
+  // Through --set as well (file "--set", no line).
+  const CaseError e = error_of(walls_probes, {"probe.0.name=" + std::string(300, 'a')});
+  EXPECT_EQ(e.file(), "--set");
+  EXPECT_EQ(e.key(), "probe[0].name");
+  EXPECT_NE(e.message().find("(300 characters) is too long"), std::string::npos) << e.what();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -382,7 +407,9 @@ TEST(CaseLoadErrors, PeriodicDomainNarrowerThanThreeH) {
 TEST(CaseLoadErrors, WallVelocityMustBeTangential) {
   const std::string text = kMinimal + "\n[[wall]]\nfrom = [0, 0]\nto = [1e-3, 1e-3]\nvelocity = [1, 0.999]\n";
   expect_error(text, "wall[0].velocity", "velocity", "wall velocity must be tangential");
-  EXPECT_NO_THROW(load_case_text(with(text, "[1, 0.999]", "[-2, -2]"), kFile));
+  // Tangential, so the next check speaks: a sliding wall must run along a periodic axis.
+  expect_error(with(text, "[1, 0.999]", "[-2, -2]"), "wall[0].velocity", "velocity",
+               "does not run along a periodic axis");
 }
 
 TEST(CaseLoadErrors, WallOutsideTheDomainOrOfZeroLength) {

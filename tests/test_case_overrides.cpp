@@ -101,7 +101,8 @@ TEST(CaseOverrides, IntBoolVec2Bool2) {
 }
 
 TEST(CaseOverrides, ArrayOfTablesMembersByIndex) {
-  const Case c = load({"probe.0.points=81", "wall.1.velocity=[1e-5,0]", "wall.0.name=bottom"});
+  const Case c = load({"probe.0.points=81", "domain.periodic=[true,false]", "wall.1.velocity=[1e-5,0]",
+                       "wall.0.name=bottom"});
   EXPECT_EQ(c.probes[0].points, 81);
   EXPECT_EQ(c.walls[1].velocity.x, 1e-5);
   EXPECT_EQ(c.walls[0].name, "bottom");

@@ -328,20 +328,21 @@ TEST(CaseRoundTrip, RandomRealsKeepEveryBit) {
     return lo + (hi - lo) * static_cast<real>(rng() >> 11) * 0x1.0p-53;
   };
   Case a = load_case_text(kFull, kFile);
+  a.max_steps = 1000;  // the random speeds make the time step tiny: keep the step count within the load checks
   for (int i = 0; i < 200; ++i) {
     a.d0 = std::exp(uniform(std::log(1e-9), std::log(5e-5)));  // the bodies need 10 d0 across
     a.h_over_d0 = uniform(1.5, 4);
     a.rho0 = uniform(1, 2e4);
     a.nu = std::exp(uniform(-20, 0));
     a.c = uniform(1e-3, 1e3);
-    a.gravity = {uniform(-10, 10), uniform(-1e-200, 1e200)};
+    a.gravity = {uniform(-10, 10), uniform(-1e-200, 1e140)};  // derived scales stay below 1e150
     a.t_end = uniform(1e-9, 1e9);
     a.cfl = uniform(1e-3, 1);
     a.walls[0].velocity = {uniform(-1, 1), 0};
     a.probes[0].interval = uniform(1e-6, 1);
     a.bodies[0].angle = uniform(-10, 10);
     a.bodies[0].density = uniform(1, 2e4);
-    a.bodies[1].schedule[2].velocity = {uniform(-1, 1), uniform(-1e-300, 1e280)};
+    a.bodies[1].schedule[2].velocity = {uniform(-1, 1), uniform(-1e-300, 1e100)};
     a.bodies[1].vertices[4].x = uniform(0.0997, 0.09999);
     a.collision_stiffness = std::exp(uniform(0, 40));
     SCOPED_TRACE(i);

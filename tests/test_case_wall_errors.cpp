@@ -137,6 +137,38 @@ TEST(CaseWallErrors, CollinearWallsOverlapping) {
                             "to = [0.02, 0.0]\n")));
 }
 
+TEST(CaseWallErrors, WallShorterThanHalfD0) {
+  // A 1e-15 m wall used to give NaN at step 1 (issue 15).
+  expect_error(box_with_wall("tiny", "[0.01, 0.03]", "[0.01, 0.030000000000001]"), "wall[4].to",
+               "to = [0.01, 0.030000000000001]",
+               "wall 'tiny' is 1e-15 m long, shorter than d0/2 = 5e-05 m");
+  EXPECT_NO_THROW(load(box_with_wall("short", "[0.01, 0.03]", "[0.01, 0.03005]")));
+}
+
+TEST(CaseWallErrors, SlidingWallOnlyAlongAPeriodicAxis) {
+  // A lid sliding in a closed box runs into the next wall after d0/|v| (the time step collapsed).
+  expect_error(with(kBox, "to = [0.0, 0.06]\n", "to = [0.0, 0.06]\nvelocity = [-0.01, 0.0]\n"),
+               "wall[2].velocity", "velocity = [-0.01",
+               "wall 'top' (wall[2]) slides (velocity [-0.01, 0.0]), but it does not run along a periodic axis "
+               "of the domain: a sliding wall moves along itself, so its particles would run into the next wall "
+               "or out of the domain after d0/|v| = 0.01 s");
+  // Along the periodic axis of a channel it wraps around: Couette flow.
+  const std::string channel =
+      with(periodic_x_channel(), "to = [0.0, 0.06]\n", "to = [0.0, 0.06]\nvelocity = [-0.01, 0.0]\n");
+  EXPECT_NO_THROW(load(channel));
+  // ... but not joined to another wall: the joint would come apart.
+  expect_error(box_with_wall("baffle", "[0.0, 0.03]", "[0.02, 0.03]") +
+                   "velocity = [0.01, 0.0]\n",
+               "wall[4].velocity", "velocity = [0.01", "but it does not run along a periodic axis");
+  // The upper wall in two pieces, the second sliding.
+  const std::string joined = with(channel, "from = [0.02, 0.06]\nto = [0.0, 0.06]",
+                                  "from = [0.02, 0.06]\nto = [0.01, 0.06]\n\n[[wall]]\nname = \"upper2\"\n"
+                                  "from = [0.01, 0.06]\nto = [0.0, 0.06]");
+  expect_error(joined, "wall[2].velocity", "velocity = [-0.01",
+               "wall 'upper2' (wall[2]) slides (velocity [-0.01, 0.0]) but starts where wall 'upper' (wall[1]) "
+               "ends: the joint would come apart");
+}
+
 // ---------------------------------------------------------------------------------------------
 // Chains.
 

@@ -1,10 +1,11 @@
 // Consistency checks between keys, run after every key passed its own type and range check.
 // To add one, write a function below and append it to kChecks.
 // Walls: on a domain edge with the fluid inside, not on a periodic boundary, no two on one
-// stretch, joined head to tail (no gaps below d0/2, at most two per point), clear of bodies.
+// stretch, joined head to tail (no gaps below d0/2, at most two per point), sliding only along a
+// periodic axis, clear of bodies.
 // Bodies: keys used by their shape or motion only, valid polygons, density of free bodies,
 // schedules, size against d0, inside the domain, no overlap at t = 0, no free body starting in
-// contact.
+// contact. Scales, probes and time steps: cost_checks.cpp.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -62,6 +63,12 @@ void check_walls(const Case& c, const LoadContext& ctx) {
                                                vec(c.domain_min), vec(c.domain_max)));
     const Vec2 t = w.to - w.from;
     if (norm(t) == 0) throw ctx.error(key + "to", "wall has zero length (to == from)");
+    if (norm(t) < 0.5 * c.d0)
+      throw ctx.error(key + "to",
+                      fmt::format("wall '{}' is {:.3g} m long, shorter than d0/2 = {:.6g} m: its two end particles "
+                                  "would be that close (the time step shrinks with the closest pair); make it at "
+                                  "least d0/2 long or leave it out",
+                                  w.name, norm(t), 0.5 * c.d0));
     if (std::fabs(cross(w.velocity, t)) > 1e-9 * norm(w.velocity) * norm(t))
       throw ctx.error(key + "velocity",
                       fmt::format("wall velocity must be tangential (parallel to to - from = {}), "
@@ -167,6 +174,34 @@ bool edges_meet(const std::vector<Vec2>& v, std::size_t i, std::size_t j, real a
   return segments_meet(a, a2, q, q2, area_eps, len_eps);
 }
 
+/// No two vertices of polygon body[k] closer than d0/2: every vertex is a surface particle, and
+/// the time step shrinks with the closest pair of particles (two vertices 1e-8 m apart would
+/// make steps of about 1e-11 s). Of all such pairs the first in (j, i) order is reported.
+void check_vertex_spacing(const Case& c, const LoadContext& ctx, std::size_t k) {
+  const std::vector<Vec2>& v = c.bodies[k].vertices;
+  const std::size_t n = v.size();
+  const real limit = 0.5 * c.d0;
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return v[p].x < v[q].x; });
+  std::optional<std::pair<std::size_t, std::size_t>> first;  // (later, earlier) vertex
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::size_t q = p + 1; q < n && v[order[q]].x - v[order[p]].x < limit; ++q) {
+      const std::size_t i = std::min(order[p], order[q]), j = std::max(order[p], order[q]);
+      if (norm(v[j] - v[i]) < limit && (!first || std::pair{j, i} < *first)) first = std::pair{j, i};
+    }
+  if (!first) return;
+  const auto [j, i] = *first;
+  const std::string key = body_key(k, "vertices");
+  const real gap = norm(v[j] - v[i]);
+  throw ctx.error_at(
+      key, ctx.item_line(key, j),
+      fmt::format("polygon vertices[{}] {} and vertices[{}] {} are {:.3g} m apart, closer than d0/2 = {:.6g} m: "
+                  "each vertex is a surface particle and the time step shrinks with the closest pair (about "
+                  "{:.2g} times shorter here); merge the two vertices or move them at least d0/2 apart",
+                  i, vec(v[i]), j, vec(v[j]), gap, limit, c.d0 / gap));
+}
+
 /// Polygons: distinct consecutive vertices, not all on one line, no edge meeting another
 /// except its neighbours at their shared vertex.
 void check_polygons(const Case& c, const LoadContext& ctx) {
@@ -223,6 +258,7 @@ void check_polygons(const Case& c, const LoadContext& ctx) {
                       vec(v[(j + 1) % n])));
     }
     if (sign(twice_area(v), area_eps) == 0) throw ctx.error(key, "polygon has zero area");
+    check_vertex_spacing(c, ctx, k);
   }
 }
 
@@ -751,6 +787,38 @@ void check_wall_chains(const Case& c, const LoadContext& ctx) {
     }
 }
 
+/// A sliding wall (non-zero velocity) translates along itself: it must run along a periodic axis,
+/// where its particles wrap around, and share no end point with another wall (the joint would
+/// come apart). In a closed box its particles would run into the next wall after d0/|v| and the
+/// time step collapse (a lid-driven cavity cannot be made this way).
+void check_sliding_walls(const Case& c, const LoadContext& ctx) {
+  const real tol = 1e-6 * c.d0;
+  const std::vector<WallEnd> ends = wall_ends(c);
+  for (std::size_t k = 0; k < c.walls.size(); ++k) {
+    const WallSpec& w = c.walls[k];
+    if (norm(w.velocity) == 0) continue;
+    const Vec2 t = w.to - w.from;
+    const bool along_x = std::fabs(t.y) <= tol, along_y = std::fabs(t.x) <= tol;
+    if (!(along_x && c.periodic_x) && !(along_y && c.periodic_y))
+      throw ctx.error(
+          wall_key(k, "velocity"),
+          fmt::format("{} slides (velocity {}), but it does not run along a periodic axis of the domain: a sliding "
+                      "wall moves along itself, so its particles would run into the next wall or out of the domain "
+                      "after d0/|v| = {:.3g} s; sliding walls are for channels periodic along the wall "
+                      "(domain.periodic), e.g. Couette flow",
+                      wall_text(c, k), vec(w.velocity), c.d0 / norm(w.velocity)));
+    for (const WallEnd& e : ends) {
+      if (e.wall != k) continue;
+      for (const WallEnd& o : ends)
+        if (o.wall != k && end_gap(c, e, o) <= tol)
+          throw ctx.error(wall_key(k, "velocity"),
+                          fmt::format("{} slides (velocity {}) but {} where {} {}: the joint would come apart as "
+                                      "it slides; a sliding wall must not share an end point with another wall",
+                                      wall_text(c, k), vec(w.velocity), e.verb(), wall_text(c, o.wall), o.verb()));
+    }
+  }
+}
+
 /// A flat side of a body: from p to q, with its outward normal.
 struct FlatSide {
   Vec2 p, q, out;
@@ -927,13 +995,13 @@ using CrossCheck = void (*)(const Case&, const LoadContext&);
 
 /// Run in this order (later checks may rely on earlier ones, e.g. walls on a valid domain, the
 /// geometric body checks on valid polygons).
-constexpr CrossCheck kChecks[] = {check_domain,           check_periodic_width, check_walls,
+constexpr CrossCheck kChecks[] = {check_domain,           check_magnitudes,     check_periodic_width, check_walls,
                                   check_walls_off_periodic_edges, check_wall_orientation, check_wall_overlap,
-                                  check_wall_gaps, check_wall_joints, check_wall_chains,
+                                  check_wall_gaps, check_wall_joints, check_wall_chains, check_sliding_walls,
                                   check_unused_keys,      check_polygons,       check_density,
                                   check_schedules,        check_fixed_bodies,   check_body_sizes,
                                   check_bodies_in_domain, check_body_overlap,   check_walls_clear_of_bodies,
-                                  check_initial_contacts};
+                                  check_initial_contacts, check_probes,         check_time_steps};
 
 }  // namespace
 

@@ -65,6 +65,12 @@ inline bool is_list_type(ValueType t) { return t == ValueType::Vec2List || t == 
 /// Applies --set overrides to the parsed document (see load_case).
 void apply_overrides(toml::table& root, const std::vector<std::string>& overrides, LoadContext& ctx);
 
+/// Cost checks (cost_checks.cpp), run by run_cross_checks: derived scales within double range,
+/// probes inside the domain and of a sensible size, time steps and output counts bounded.
+void check_magnitudes(const Case& c, const LoadContext& ctx);
+void check_probes(const Case& c, const LoadContext& ctx);
+void check_time_steps(const Case& c, const LoadContext& ctx);
+
 /// Consistency checks between keys (domain, walls, periodic width, bodies, ...); throw CaseError.
 void run_cross_checks(const Case& c, const LoadContext& ctx);
 

@@ -34,6 +34,15 @@ A case file is TOML. Rules that hold for every key:
   `--set 'body.0.vertices=[[0,0],[1e-3,0],[0,1e-3]]'`.
 - The run directory gets `case.toml`, the fully resolved case (every key, defaults filled in;
   viscosity written as `fluid.nu`).
+- Beyond each key's range, the whole case is checked before anything is written (exit code 2,
+  with the file, line and key): names (case, walls, probes, bodies) have at most 64 characters;
+  every derived scale (d0, the domain, c, rho0 c^2, the particle mass rho0 d0^2, 1/h^3, the time
+  step, wall forces, accelerations, body masses and speeds) lies within [1e-150, 1e150], so that
+  squares and products stay finite non-zero doubles (a case with every number times 1e150 is
+  refused); the time step, estimated from d0, `fluid.c`, `fluid.nu` and the initial speeds, gives
+  at most 1e9 steps to `time.end`; `time.dt_max` (when set) and every output interval
+  (`output.*`, `probe[].interval`) are at least 1e-3 of that step, and each output stream makes
+  at most 1e6 outputs. The sections below list the checks of walls, probes and bodies.
 
 A minimal case:
 
@@ -167,7 +176,9 @@ std::string type_cell(const KeySpec& s) {
 }
 
 std::string range_cell(const KeySpec& s) {
-  if (s.identifier) return code("[A-Za-z0-9_-]+") + (s.unique ? ", unique" : "");
+  if (s.identifier)
+    return code("[A-Za-z0-9_-]+") + fmt::format(", at most {} characters", kMaxNameLength) +
+           (s.unique ? ", unique" : "");
   if (s.type == ValueType::Vec2List) return fmt::format("at least {} points", s.min_items);
   if (s.type == ValueType::Real4Table) return fmt::format("at least {} rows", s.min_items);
   if (s.type == ValueType::Vec2 && !s.range.text().empty()) return code(s.range.text()) + " each";

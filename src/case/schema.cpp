@@ -452,8 +452,8 @@ std::vector<KeySpec> make_schema() {
                 shape, {"ellipse"}),
       used_when(vec2_list_key("body[].vertices", "m", required(), 3,
                               "Polygon vertices [[x, y], ...] in world coordinates at t = 0, in either "
-                              "orientation and not self-intersecting; a non-zero angle rotates them about "
-                              "their area centroid.",
+                              "orientation, not self-intersecting and at least d0/2 apart (each is a surface "
+                              "particle); a non-zero angle rotates them about their area centroid.",
                               member(B, &BodySpec::vertices)),
                 shape, {"polygon"}),
       real_key("body[].angle", "rad", def(0.0), any(),
@@ -533,11 +533,14 @@ std::vector<SectionSpec> make_sections() {
                     "Straight wall segments, one [[wall]] table each; list a closed box counter-clockwise. Checked at "
                     "load: a wall on an edge of the domain has the fluid (its left side) inside; walls that meet "
                     "share an end point, one's `to` being the next one's `from`, at most two per point (ends "
-                    "closer than d0/2 must be equal); no wall lies on a periodic edge, overlaps another on the "
-                    "same line, or comes within d0/2 of a body (a fixed body may stand on a wall with a flat "
-                    "side)."),
+                    "closer than d0/2 must be equal); a wall is at least d0/2 long; no wall lies on a periodic "
+                    "edge, overlaps another on the same line, or comes within d0/2 of a body (a fixed body may "
+                    "stand on a wall with a flat side); a wall with a velocity slides along itself, so it must run "
+                    "along a periodic axis and share no end point with another wall."),
       array_section("probe", &Case::probes,
-                    "Line probes, one [[probe]] table each: fields interpolated along a segment."),
+                    "Line probes, one [[probe]] table each: fields interpolated along a segment. Checked at load: "
+                    "both ends inside the domain, points at least d0/100 apart (only a probe of length 0 may have "
+                    "2 points at one place), at most 1e6 points over all probes (`info` counts their memory)."),
       array_section("body", &Case::bodies,
                     "Rigid bodies, one [[body]] table each: free, fixed or with prescribed motion. The keys "
                     "marked \"for shape\" or \"for motion\" are used by those shapes or motions only, and "

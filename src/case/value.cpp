@@ -409,6 +409,10 @@ std::string convert_string(const toml::node& n, const KeySpec& spec, Value& out)
   if (spec.type == ValueType::Choice &&
       std::find(spec.choices.begin(), spec.choices.end(), text) == spec.choices.end())
     return fmt::format("'{}' is not a valid choice: expected one of {}", text, fmt::join(spec.choices, ", "));
+  if (spec.identifier && text.size() > kMaxNameLength)
+    return fmt::format("'{}...' ({} characters) is too long: a name becomes part of file names and columns, "
+                       "at most {} characters",
+                       text.substr(0, 16), text.size(), kMaxNameLength);
   if (spec.identifier && !plain_component(text))
     return fmt::format("'{}' is not a valid name: use only letters, digits, '_' and '-'", text);
   out = text;

@@ -43,18 +43,15 @@ int info_command(const std::filesystem::path& case_file, const std::vector<std::
       if (solver.step()) break;
     per_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / std::max(1, timed);
   } else {
-    real vmax = 0;
-    for (const auto& v : P.v) vmax = std::max(vmax, norm(v));
-    const real dmin = c.d0 * std::min(1.0 - 2 * c.perturbation, M_SQRT1_2 * (1.0 - 2 * c.perturbation));
-    dt = c.cfl * dmin / (c.c + vmax);
-    if (c.nu > 0) dt = std::min(dt, c.cfl * dmin * dmin / c.nu);
-    if (c.dt_max > 0) dt = std::min(dt, c.dt_max);
+    dt = estimated_dt(c);  // as the load checks estimate it
     // about pi (h/d0)^2 - 1 neighbours in the interior
     pairs = static_cast<double>(P.size()) * (M_PI * c.h_over_d0 * c.h_over_d0 - 1);
   }
   const double steps = std::ceil(c.t_end / dt);
-  // Particle arrays (about 48 doubles each with the work arrays) plus the pair list (4 bytes a pair).
-  const double bytes = static_cast<double>(P.size()) * 48 * 8 + pairs * 4;
+  // Particle arrays (about 48 doubles each with the work arrays), the pair list (4 bytes a pair)
+  // and the probes.
+  const SizeEstimate size = estimate_size(c);
+  const double bytes = static_cast<double>(P.size()) * 48 * 8 + pairs * 4 + size.probe_bytes;
   std::printf("case            %s (%s)\n", c.name.c_str(), case_file.string().c_str());
   std::printf("particles       %zu: %zu fluid, %zu boundary surface, %zu dummy\n", P.size(), n_fluid, n_surface, n_dummy);
   std::printf("rigid groups    %zu\n", scene.groups.size());
@@ -62,7 +59,8 @@ int info_command(const std::filesystem::path& case_file, const std::vector<std::
   std::printf("initial dt      %.6g s (P.29-P.31, alpha = %g%s)\n", dt, c.cfl,
               timing ? "" : "; estimated from the lattice");
   std::printf("steps           about %.0f to t = %g s\n", steps, c.t_end);
-  std::printf("memory          about %.1f MiB\n", bytes / (1024.0 * 1024.0));
+  std::printf("memory          about %.1f MiB (probes: %.0f points, %.1f MiB)\n", bytes / (1024.0 * 1024.0),
+              size.probe_points, size.probe_bytes / (1024.0 * 1024.0));
   if (timing)
     std::printf("wall time       about %s on %d threads (%.3g s per step measured over %d steps)\n",
                 fmt::format("{:.0f} s", steps * per_step).c_str(), omp_get_max_threads(), per_step, timed);

@@ -99,14 +99,32 @@ ProbeWriter::ProbeWriter(const std::filesystem::path& run_dir, const ProbeSpec& 
   }
 }
 
-void ProbeWriter::write(const Solver& s) {
+namespace {
+/// A Failure naming the first non-finite value of `row` (columns `names`), or nullopt.
+std::optional<Failure> non_finite(const std::vector<double>& row, const std::vector<std::string>& names,
+                                  const std::string& where, Vec2 position) {
+  for (std::size_t j = 0; j < row.size(); ++j) {
+    if (std::isfinite(row[j])) continue;
+    Failure f;
+    f.what = fmt::format("non-finite value (NaN or Inf) in {}: {} = {}", where, names.at(j), row[j]);
+    f.position = position;
+    return f;
+  }
+  return std::nullopt;
+}
+}  // namespace
+
+std::optional<Failure> ProbeWriter::write(const Solver& s) {
   const auto poll = [this] {
     if (stop_ && stop_()) throw io::Cancelled();
   };
   const bool exact = case_.exact != ExactSolution::None;
   const std::size_t np = points_.size(), nc = exact ? 7 : 6;
+  const std::vector<std::string> names = probe_columns(case_);
   // Interpolated in chunks (each point on its own, so the values do not depend on the chunking),
   // polling the stop check between chunks and, with the exact series (slow at early times), per point.
+  // Every value is checked before anything is written: a non-finite one writes nothing and is
+  // returned as a failure (the run ends with exit 3).
   constexpr std::size_t kChunk = 16384;
   std::vector<double> values;
   values.reserve(np * nc);
@@ -126,32 +144,47 @@ void ProbeWriter::write(const Solver& s) {
         values.push_back(ex);
         err2 += (a.v.x - ex) * (a.v.x - ex);
       }
+      const std::vector<double> row(values.end() - static_cast<std::ptrdiff_t>(nc), values.end());
+      if (auto f = non_finite(row, names, fmt::format("probe '{}' (point {})", spec_.name, k), points_[k])) return f;
     }
   }
   csv_.rows(values, stop_);
   if (exact) last_error_ = std::sqrt(err2 / points_.size()) / exact_peak_speed(case_);
+  return std::nullopt;
 }
 
 // ---- body history ---------------------------------------------------------------------------
 
-BodyHistoryWriter::BodyHistoryWriter(const std::filesystem::path& run_dir)
-    : csv_(run_dir / "bodies.csv", {"time", "body", "x", "y", "angle", "vx", "vy", "omega", "fx", "fy", "torque",
-                                    "fpx", "fpy", "fvx", "fvy", "fcx", "fcy"}),
-      walls_(run_dir / "walls.csv", {"time", "wall", "fx", "fy", "fpx", "fpy", "fvx", "fvy"}) {}
+namespace {
+const std::vector<std::string> kBodyColumns{"time", "body", "x",   "y",   "angle", "vx",  "vy",  "omega", "fx",
+                                            "fy",   "torque", "fpx", "fpy", "fvx",   "fvy", "fcx", "fcy"};
+const std::vector<std::string> kWallColumns{"time", "wall", "fx", "fy", "fpx", "fpy", "fvx", "fvy"};
+}  // namespace
 
-void BodyHistoryWriter::write(const Solver& s) {
+BodyHistoryWriter::BodyHistoryWriter(const std::filesystem::path& run_dir)
+    : csv_(run_dir / "bodies.csv", kBodyColumns), walls_(run_dir / "walls.csv", kWallColumns) {}
+
+std::optional<Failure> BodyHistoryWriter::write(const Solver& s) {
+  std::vector<std::vector<double>> bodies, walls;
   int wall = 0;
   for (const RigidGroup& g : s.groups()) {
     const Vec2 f = g.force_pressure + g.force_viscous;
-    if (g.is_wall) {
-      walls_.row({s.time(), static_cast<double>(wall++), f.x, f.y, g.force_pressure.x, g.force_pressure.y,
-                  g.force_viscous.x, g.force_viscous.y});
-      continue;
-    }
-    csv_.row({s.time(), static_cast<double>(g.body), g.pos.x, g.pos.y, g.angle, g.vel.x, g.vel.y, g.omega, f.x, f.y,
-              g.torque, g.force_pressure.x, g.force_pressure.y, g.force_viscous.x, g.force_viscous.y,
-              g.force_collision.x, g.force_collision.y});
+    const bool is_wall = g.is_wall;
+    auto& rows = is_wall ? walls : bodies;
+    if (is_wall)
+      rows.push_back({s.time(), static_cast<double>(wall++), f.x, f.y, g.force_pressure.x, g.force_pressure.y,
+                      g.force_viscous.x, g.force_viscous.y});
+    else
+      rows.push_back({s.time(), static_cast<double>(g.body), g.pos.x, g.pos.y, g.angle, g.vel.x, g.vel.y, g.omega, f.x,
+                      f.y, g.torque, g.force_pressure.x, g.force_pressure.y, g.force_viscous.x, g.force_viscous.y,
+                      g.force_collision.x, g.force_collision.y});
+    const std::string where = fmt::format("{} of {} '{}'", is_wall ? "walls.csv" : "bodies.csv",
+                                          is_wall ? "wall" : "body", g.name);
+    if (auto bad = non_finite(rows.back(), is_wall ? kWallColumns : kBodyColumns, where, g.pos)) return bad;
   }
+  for (const auto& row : bodies) csv_.row(row);
+  for (const auto& row : walls) walls_.row(row);
+  return std::nullopt;
 }
 
 }  // namespace particula

@@ -126,7 +126,7 @@ class SnapshotRelay {
 
 // ---- the streams --------------------------------------------------------------------------------
 
-void RunOutputs::add(std::string key, real interval, std::function<void(const Solver&)> write) {
+void RunOutputs::add(std::string key, real interval, std::function<std::optional<Failure>(const Solver&)> write) {
   Stream s;
   s.key = std::move(key);
   s.interval = interval;
@@ -136,16 +136,18 @@ void RunOutputs::add(std::string key, real interval, std::function<void(const So
 
 RunOutputs::RunOutputs(const fs::path& dir, const Case& c, io::StopCheck stop) {
   bodies_ = std::make_unique<BodyHistoryWriter>(dir);
-  add("bodies", c.output_interval, [this](const Solver& s) { bodies_->write(s); });
+  add("bodies", c.output_interval, [this](const Solver& s) { return bodies_->write(s); });
   for (const auto& p : c.probes) {
     probes_.push_back(std::make_unique<ProbeWriter>(dir, p, c, stop));
     ProbeWriter* w = probes_.back().get();
-    add("probe:" + p.name, p.interval, [w](const Solver& s) { w->write(s); });
+    add("probe:" + p.name, p.interval, [w](const Solver& s) { return w->write(s); });
   }
   if (c.snapshots) {
     snapshots_ = std::make_unique<SnapshotWriter>(dir, stop);
-    add("snapshots", c.snapshot_interval > 0 ? c.snapshot_interval : c.output_interval,
-        [this](const Solver& s) { snapshots_->write(s); });
+    add("snapshots", c.snapshot_interval > 0 ? c.snapshot_interval : c.output_interval, [this](const Solver& s) {
+      snapshots_->write(s);  // the particle fields: checked by the solver's health check every step
+      return std::optional<Failure>();
+    });
   }
 }
 
@@ -168,9 +170,10 @@ RunOutputs::RunOutputs(const fs::path& dir, const Case& c, const std::vector<Out
   csv_relays_.push_back(std::make_unique<CsvRelay>(scratch_ / "walls.csv", dir / "walls.csv", mark("bodies")));
   CsvRelay* wall_relay = csv_relays_.back().get();
   add("bodies", c.output_interval, [this, body_relay, wall_relay](const Solver& s) {
-    bodies_->write(s);
+    if (auto f = bodies_->write(s)) return f;
     body_relay->pump();
     wall_relay->pump();
+    return std::optional<Failure>();
   });
   for (const auto& p : c.probes) {
     const std::string file = "probe_" + p.name + ".csv";
@@ -179,8 +182,9 @@ RunOutputs::RunOutputs(const fs::path& dir, const Case& c, const std::vector<Out
     ProbeWriter* w = probes_.back().get();
     CsvRelay* relay = csv_relays_.back().get();
     add("probe:" + p.name, p.interval, [w, relay](const Solver& s) {
-      w->write(s);
+      if (auto f = w->write(s)) return f;
       relay->pump();
+      return std::optional<Failure>();
     });
   }
   if (c.snapshots) {
@@ -189,6 +193,7 @@ RunOutputs::RunOutputs(const fs::path& dir, const Case& c, const std::vector<Out
     add("snapshots", c.snapshot_interval > 0 ? c.snapshot_interval : c.output_interval, [this](const Solver& s) {
       snapshots_->write(s);
       snapshot_relay_->pump();
+      return std::optional<Failure>();
     });
   }
   resume_schedule(marks, t0);
@@ -215,14 +220,18 @@ RunOutputs::~RunOutputs() {
   fs::remove_all(scratch_, ec);
 }
 
-void RunOutputs::write(const Solver& solver, bool force) {
+std::optional<Failure> RunOutputs::write(const Solver& solver, bool force) {
   const real t = solver.time();
   bool cancelled = false;
+  std::optional<Failure> failure;
   for (Stream& s : streams_) {
     const bool due = t >= s.next - 1e-9 * s.interval;
     if (!due && !(force && s.last_written < t)) continue;
     try {
-      s.write(solver);
+      if (auto f = s.write(solver)) {  // nothing written: the run ends with exit 3
+        if (!failure) failure = std::move(f);
+        continue;
+      }
     } catch (const io::Cancelled&) {
       cancelled = true;
       continue;
@@ -233,7 +242,8 @@ void RunOutputs::write(const Solver& solver, bool force) {
       s.next = next_multiple(t, s.interval);
     }
   }
-  if (cancelled) throw io::Cancelled();
+  if (cancelled && !failure) throw io::Cancelled();
+  return failure;
 }
 
 real RunOutputs::next_event(real t_end) const {

@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,8 +45,9 @@ class RunOutputs {
   /// Writes every stream that is due at the solver's time (or, with `force`, every stream that
   /// has not written this time yet). A stream whose write is given up on the stop check is
   /// skipped (nothing of it written, its schedule unchanged) and the others are written; then
-  /// io::Cancelled is thrown.
-  void write(const Solver& s, bool force);
+  /// io::Cancelled is thrown. A stream whose values are not all finite writes nothing; the first
+  /// such failure is returned (the run ends with exit 3).
+  std::optional<Failure> write(const Solver& s, bool force);
   /// The earliest next output time, capped at t_end.
   real next_event(real t_end) const;
   /// The last scheduled write of each stream, for checkpoints.
@@ -59,9 +61,9 @@ class RunOutputs {
     real next = 0;
     real last_written = -std::numeric_limits<real>::infinity();
     real last_scheduled = -std::numeric_limits<real>::infinity();
-    std::function<void(const Solver&)> write;
+    std::function<std::optional<Failure>(const Solver&)> write;
   };
-  void add(std::string key, real interval, std::function<void(const Solver&)> write);
+  void add(std::string key, real interval, std::function<std::optional<Failure>(const Solver&)> write);
   void resume_schedule(const std::vector<OutputMark>& marks, real t0);
 
   std::filesystem::path scratch_;  // resumed runs: where the observers write before relaying

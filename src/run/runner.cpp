@@ -123,18 +123,20 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   io::ProgressLine progress(&rep.log, popt);
   const auto wall0 = std::chrono::steady_clock::now();
   // A long output given up on a stop request (io::Cancelled) ends the run as interrupted; what
-  // it would have written is written by the resumed run.
+  // it would have written is written by the resumed run. Every output is checked before it is
+  // written: a non-finite value ends the run as a numerical failure (exit 3), as a failed step does.
   bool cancelled = false;
-  auto write_outputs = [&](bool force) {
+  auto write_outputs = [&](bool force) -> std::optional<Failure> {
     try {
-      out.write(solver, force);
+      return out.write(solver, force);
     } catch (const io::Cancelled&) {
       cancelled = true;
+      return std::nullopt;
     }
   };
   // The initial state; a resumed run has it already, but writes what was due at its checkpoint
   // and given up then.
-  write_outputs(!s.resumed);
+  std::optional<Failure> failure = write_outputs(!s.resumed);
   mark_started(s, rep);
   const real ci = c.checkpoint_interval;
   real next_checkpoint = ci > 0 ? run_detail::next_multiple(solver.time(), ci) : std::numeric_limits<real>::infinity();
@@ -142,7 +144,7 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   int exit_code = 0;
   double particle_steps = 0, interactions = 0;
   const real eps = 1e-9 * c.t_end;
-  while (solver.time() < c.t_end - eps) {
+  while (!failure && solver.time() < c.t_end - eps) {
     if (c.max_steps > 0 && solver.step_count() >= c.max_steps) {
       status = "max_steps";
       break;
@@ -152,25 +154,11 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
       exit_code = 130;
       break;
     }
-    const auto failure = solver.step(out.next_event(c.t_end) - solver.time());
+    failure = solver.step(out.next_event(c.t_end) - solver.time());
     particle_steps += static_cast<double>(solver.particle_count());
     interactions += static_cast<double>(solver.last_pair_count());
-    if (failure) {
-      write_outputs(true);
-      const fs::path diag = checkpoint_file.parent_path() / kFailureCheckpoint;
-      save_checkpoint(diag, s);
-      const std::string msg = fmt::format(
-          "numerical failure at t = {:.9g} s, step {}: {} at ({:.6g}, {:.6g}); last snapshot and a diagnostic "
-          "checkpoint ({}) written",
-          solver.time(), solver.step_count(), failure->what, failure->position.x, failure->position.y, diag.string());
-      progress.finish();
-      rep.log.record("error: " + msg);
-      std::fprintf(stderr, "error: %s\n", msg.c_str());
-      status = "failed";
-      exit_code = 3;
-      break;
-    }
-    write_outputs(false);
+    if (!failure) failure = write_outputs(false);
+    if (failure) break;
     if (cancelled) continue;  // interrupted: the checkpoint is written below
     if (solver.time() >= next_checkpoint - 1e-9 * ci) {
       save_checkpoint(checkpoint_file, s);
@@ -181,9 +169,22 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
                     wall > 0 ? particle_steps / wall : 0);
   }
   progress.finish();
-  if (exit_code != 3) {  // the final state (a failure already wrote it) and the restartable checkpoint
-    write_outputs(true);  // after a stop request, long outputs are skipped at once
-    save_checkpoint(checkpoint_file, s);
+  // The final state (after a stop request, long outputs are skipped at once).
+  if (!failure) failure = write_outputs(true);
+  if (failure) {  // the state as far as it is finite, and a diagnostic checkpoint
+    write_outputs(true);
+    const fs::path diag = checkpoint_file.parent_path() / kFailureCheckpoint;
+    save_checkpoint(diag, s);
+    const std::string msg = fmt::format(
+        "numerical failure at t = {:.9g} s, step {}: {} at ({:.6g}, {:.6g}); last snapshot and a diagnostic "
+        "checkpoint ({}) written",
+        solver.time(), solver.step_count(), failure->what, failure->position.x, failure->position.y, diag.string());
+    rep.log.record("error: " + msg);
+    std::fprintf(stderr, "error: %s\n", msg.c_str());
+    status = "failed";
+    exit_code = 3;
+  } else {
+    save_checkpoint(checkpoint_file, s);  // the restartable checkpoint
   }
   if (exit_code == 130)
     rep.tell(fmt::format("interrupted at t = {:.9g} s: checkpoint written; continue with: particula resume {}",

@@ -511,13 +511,32 @@ void Solver::reorder_fluid() {
   permute(P_.id);
 }
 
+namespace {
+/// The first rigid group with a non-finite motion or load (what bodies.csv and walls.csv
+/// hold), as a Failure; nullopt when all are finite.
+std::optional<Failure> unhealthy_group(const std::vector<RigidGroup>& groups) {
+  for (const RigidGroup& g : groups) {
+    const real values[] = {g.pos.x, g.pos.y, g.vel.x, g.vel.y, g.angle, g.omega, g.torque,
+                           g.force_pressure.x, g.force_pressure.y, g.force_viscous.x, g.force_viscous.y,
+                           g.force_collision.x, g.force_collision.y};
+    if (std::all_of(std::begin(values), std::end(values), [](real v) { return std::isfinite(v); })) continue;
+    Failure f;
+    f.position = std::isfinite(g.pos.x) && std::isfinite(g.pos.y) ? g.pos : Vec2{};
+    f.what = std::string("non-finite value (NaN or Inf) in the motion or force of ") + (g.is_wall ? "wall '" : "body '") +
+             g.name + "'";
+    return f;
+  }
+  return std::nullopt;
+}
+}  // namespace
+
 std::optional<Failure> Solver::check_health() const {
   const HealthLimits lim = health_limits();
   const real lo = lim.rho_lo, hi = lim.rho_hi;
   std::int64_t worst = std::numeric_limits<std::int64_t>::max();
   if (dev_) {
     const std::int64_t id = dev_->unhealthy_id(lim);
-    if (id < 0) return std::nullopt;
+    if (id < 0) return unhealthy_group(groups_);
     worst = id;
     particles();  // the host copy names the particle
   } else {
@@ -525,7 +544,7 @@ std::optional<Failure> Solver::check_health() const {
 #pragma omp parallel for schedule(static) reduction(min : worst)
     for (std::size_t i = 0; i < n; ++i)
       if (particle_unhealthy(P_.is_fluid(i), P_.x[i], P_.v[i], P_.rho[i], P_.p[i], lim)) worst = std::min(worst, P_.id[i]);
-    if (worst == std::numeric_limits<std::int64_t>::max()) return std::nullopt;
+    if (worst == std::numeric_limits<std::int64_t>::max()) return unhealthy_group(groups_);
   }
   std::size_t i = 0;
   while (P_.id[i] != worst) ++i;

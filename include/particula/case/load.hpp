@@ -23,6 +23,25 @@ Case load_case(const std::filesystem::path& file, const std::vector<std::string>
 Case load_case_text(std::string_view text, const std::filesystem::path& source,
                     const std::vector<std::string>& overrides = {});
 
+/// Limits the load checks apply (src/case/cost_checks.cpp; docs/case-files.md lists them).
+/// All probes together have at most this many points (memory and output size).
+inline constexpr double kMaxProbePoints = 1e6;
+/// Probe points are at least d0 / kProbePointsPerD0 apart.
+inline constexpr double kProbePointsPerD0 = 100;
+/// A run takes at most this many steps to time.end (or time.max_steps).
+inline constexpr double kMaxSteps = 1e9;
+/// Each output stream (outputs, snapshots, checkpoints, each probe) writes at most this often.
+inline constexpr double kMaxOutputs = 1e6;
+/// time.dt_max (when set) and every output interval are at least this fraction of the stable
+/// time step.
+inline constexpr double kMinStepFraction = 1e-3;
+
+/// The stable time step at t = 0 estimated from the case alone: P.30-P.31 with the nearest
+/// pair of the perturbed lattice and the largest initial speed (walls, bodies, initial flow),
+/// capped by time.dt_max when `capped`. The load checks compare time.dt_max, the output
+/// intervals and the step count with it; `info --no-timing` prints it.
+real estimated_dt(const Case& c, bool capped = true);
+
 /// The fully resolved case as TOML: every key with its value, defaults filled in. Loading this
 /// text again gives an identical Case (viscosity is always written as fluid.nu).
 std::string resolved_case_toml(const Case& c);

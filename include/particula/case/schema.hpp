@@ -96,7 +96,7 @@ struct KeySpec {
   std::vector<std::string> columns;               // Real4Table: names of the four columns
   std::optional<UsedWhen> used_when;              // members used only for some choices
   std::vector<std::string> choices;               // Choice keys
-  bool identifier = false;                        // String: must match [A-Za-z0-9_-]+
+  bool identifier = false;                        // String: must match [A-Za-z0-9_-]+, at most kMaxNameLength
   bool unique = false;                            // array member: distinct across elements
   std::string meaning;                            // one sentence
   Binding bind;
@@ -121,6 +121,10 @@ struct SectionSpec {
   std::function<std::size_t(const Case&)> size;    // arrays only: elements in a Case
   std::function<void(Case&, std::size_t)> resize;  // arrays only
 };
+
+/// Longest name (case, wall, probe and body names): names become file and directory names
+/// (`runs/<name>`, `probe_<name>.csv`) and appear in columns and messages.
+inline constexpr std::size_t kMaxNameLength = 64;
 
 /// All keys, in the order they are applied to a Case and written back.
 const std::vector<KeySpec>& case_schema();

@@ -12,10 +12,15 @@ inline constexpr double kMaxParticles = 2e8;
 struct SizeEstimate {
   double fluid = 0, boundary = 0;
   double total() const { return fluid + boundary; }
-  double bytes = 0;  // particle arrays, solver work arrays and the pair list
+  double bytes = 0;  // particle arrays, solver work arrays, the pair list and the probes
+  double probe_points = 0, probe_bytes = 0;  // all probes together (included in `bytes`)
 };
 
-/// Estimates the particle counts and memory of `c` from its domain, walls and d0 (no allocation).
+/// Memory per probe point: its position, the interpolated sample and the row written.
+inline constexpr double kBytesPerProbePoint = 16 + 32 + 8 * 7;
+
+/// Estimates the particle counts and memory of `c` from its domain, walls, d0 and probes (no
+/// allocation).
 SizeEstimate estimate_size(const Case& c);
 
 /// Throws CaseError naming `resolution.d0` and the estimated count when the case would need more

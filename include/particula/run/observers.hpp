@@ -35,7 +35,10 @@ class SnapshotWriter {
 class ProbeWriter {
  public:
   ProbeWriter(const std::filesystem::path& run_dir, const ProbeSpec& spec, const Case& c, io::StopCheck stop = {});
-  void write(const Solver& s);
+  /// Interpolates and writes one row per point; writes nothing and returns the failure when a
+  /// value is not finite (no success with broken numbers: the run ends with exit 3). Throws
+  /// io::Cancelled, having written nothing, when the stop check fires.
+  std::optional<Failure> write(const Solver& s);
   /// L2 error of vx against the exact solution at the last write, relative to the peak speed
   /// (nullopt without an exact solution).
   std::optional<double> last_error() const { return last_error_; }
@@ -56,7 +59,9 @@ class ProbeWriter {
 class BodyHistoryWriter {
  public:
   explicit BodyHistoryWriter(const std::filesystem::path& run_dir);
-  void write(const Solver& s);
+  /// Writes one row per body and wall; writes nothing and returns the failure when a value is
+  /// not finite.
+  std::optional<Failure> write(const Solver& s);
 
  private:
   io::CsvWriter csv_, walls_;

@@ -1,0 +1,138 @@
+// No success with broken numbers (issue 15, item 4): every output row is checked before it is
+// written; a non-finite value writes nothing of that stream and is returned as a Failure, which
+// the run loop turns into exit code 3 (src/run/runner.cpp).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include "../src/run/outputs.hpp"
+#include "case_builders.hpp"
+#include "particula/io/csv.hpp"
+#include "particula/run/observers.hpp"
+#include "particula/scene/scene.hpp"
+
+using namespace particula;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr real kNaN = std::numeric_limits<real>::quiet_NaN();
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("particula_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+/// A closed 0.02 m box at d0 = 1e-3 m with a probe up its middle.
+Case probed_box() {
+  Case c = cases::closed_box(0.02, 0.02, 1e-3);
+  c.output_interval = 0.1;
+  c.snapshots = false;
+  c.probes = {{"mid", {0.01, 0}, {0.01, 0.02}, 11, 0.1}};
+  return c;
+}
+
+/// The scene of `c` after `edit`, as a restarted solver (the state taken exactly as it is).
+template <class Edit>
+Solver solver_with(const Case& c, Edit edit) {
+  Scene s = build_scene(c);
+  edit(s.particles, s.groups);
+  return Solver(s.params, s.domain, std::move(s.particles), std::move(s.groups), SolverStart::Restart, 0.1, 10);
+}
+
+/// Index of the fluid particle nearest to x.
+std::size_t nearest_fluid(const Particles& P, Vec2 x) {
+  std::size_t best = P.n_boundary;
+  for (std::size_t i = P.n_boundary; i < P.size(); ++i)
+    if (norm(P.x[i] - x) < norm(P.x[best] - x)) best = i;
+  return best;
+}
+
+}  // namespace
+
+TEST(RunOutputs, FiniteStateIsWritten) {
+  const fs::path dir = fresh_dir("outputs_finite");
+  const Case c = probed_box();
+  const Solver s = solver_with(c, [](Particles&, std::vector<RigidGroup>&) {});
+  {
+    run_detail::RunOutputs out(dir, c);
+    EXPECT_FALSE(out.write(s, true).has_value());
+  }
+  EXPECT_EQ(io::read_csv(dir / "probe_mid.csv").size(), 11u);
+  EXPECT_EQ(io::read_csv(dir / "walls.csv").size(), 4u);
+  fs::remove_all(dir);
+}
+
+TEST(RunOutputs, NonFiniteProbeValueIsAFailureAndNotWritten) {
+  const fs::path dir = fresh_dir("outputs_probe_nan");
+  const Case c = probed_box();
+  const Solver s = solver_with(c, [](Particles& P, std::vector<RigidGroup>&) {
+    P.p[nearest_fluid(P, {0.01, 0.01})] = kNaN;  // points 4 to 6 (y = 0.008 to 0.012) see it
+  });
+  {
+    run_detail::RunOutputs out(dir, c);
+    const auto f = out.write(s, true);
+    ASSERT_TRUE(f.has_value());
+    EXPECT_NE(f->what.find("non-finite value (NaN or Inf) in probe 'mid' (point 4): p = nan"), std::string::npos)
+        << f->what;
+    EXPECT_NEAR(f->position.x, 0.01, 1e-12);
+  }
+  EXPECT_EQ(io::read_csv(dir / "probe_mid.csv").size(), 0u) << "no row of a broken output";
+  EXPECT_EQ(io::read_csv(dir / "walls.csv").size(), 4u) << "the other streams are written";
+  fs::remove_all(dir);
+}
+
+TEST(RunOutputs, NonFiniteWallForceIsAFailureAndNotWritten) {
+  const fs::path dir = fresh_dir("outputs_wall_inf");
+  const Case c = probed_box();
+  const Solver s = solver_with(c, [](Particles&, std::vector<RigidGroup>& g) {
+    g[1].force_viscous.y = std::numeric_limits<real>::infinity();
+  });
+  BodyHistoryWriter w(dir);
+  const auto f = w.write(s);
+  ASSERT_TRUE(f.has_value());
+  EXPECT_NE(f->what.find("in walls.csv of wall 'right': fy = inf"), std::string::npos) << f->what;
+  EXPECT_EQ(io::read_csv(dir / "walls.csv").size(), 0u);
+  EXPECT_EQ(io::read_csv(dir / "bodies.csv").size(), 0u);
+  fs::remove_all(dir);
+}
+
+TEST(RunOutputs, NonFiniteBodyStateIsAFailure) {
+  const fs::path dir = fresh_dir("outputs_body_nan");
+  Case c = probed_box();
+  BodySpec disc;
+  disc.name = "disc";
+  disc.center = {0.01, 0.012};
+  disc.radius = 0.005;
+  disc.density = 1200;
+  c.bodies = {disc};
+  const Solver s = solver_with(c, [](Particles&, std::vector<RigidGroup>& g) { g.back().omega = kNaN; });
+  BodyHistoryWriter w(dir);
+  const auto f = w.write(s);
+  ASSERT_TRUE(f.has_value());
+  EXPECT_NE(f->what.find("in bodies.csv of body 'disc': omega = nan"), std::string::npos) << f->what;
+  EXPECT_EQ(io::read_csv(dir / "bodies.csv").size(), 0u);
+  fs::remove_all(dir);
+}
+
+TEST(RunOutputs, NonFiniteGroupStateEndsTheStep) {
+  // A NaN in a wall's or a body's state ends the run at the step where it appears: the health
+  // check at the end of Solver::step covers the rigid groups (motion and loads, what bodies.csv and
+  // walls.csv hold) as well as the particles, whichever shows it first.
+  const Case c = probed_box();
+  for (const auto& edit : {+[](std::vector<RigidGroup>& g) { g[2].vel.x = kNaN; },
+                           +[](std::vector<RigidGroup>& g) { g[0].angle = kNaN; }}) {
+    Solver s = solver_with(c, [&](Particles&, std::vector<RigidGroup>& g) { edit(g); });
+    const auto f = s.step();
+    ASSERT_TRUE(f.has_value());
+    EXPECT_NE(f->what.find("non-finite value (NaN or Inf)"), std::string::npos) << f->what;
+  }
+  Solver ok = solver_with(c, [](Particles&, std::vector<RigidGroup>&) {});
+  EXPECT_FALSE(ok.step().has_value());
+}
