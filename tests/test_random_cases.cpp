@@ -29,9 +29,7 @@ constexpr std::uint64_t kSeeds = 24;
 /// Seeds that still end with exit 3: open failures of issue 14, each listed in
 /// docs/validation.md. The test fails when any OTHER seed fails, and also when one of these
 /// finishes (then remove it here), so the list can only shrink.
-const std::set<std::uint64_t> kOpenFailures = {
-    11,  // a free half-disc launched at a sliding wall: a fluid particle in the closing gap reaches 2 rho0
-};
+const std::set<std::uint64_t> kOpenFailures = {};  // seed 11 finishes since session 8
 /// Steps each accepted case runs (a few hundred: enough for bodies to start moving, the
 /// pressure waves of the start to cross the box and the first contacts to happen).
 constexpr int kSteps = 300;

@@ -579,18 +579,19 @@ std::string Solver::likely_cause(Vec2 x) const {
   }
   if (s == P_.n_boundary) return "";
   const real d = dot(domain_.separation(x, P_.x[s]), P_.normal[s]) / prm_.d0;
+  if (!std::isfinite(d) || std::fabs(d) > 1e6) return "";  // a position already broken: no cause to name
   const RigidGroup& g = groups_[static_cast<std::size_t>(P_.group[s])];
   const std::string where = (g.is_wall ? "wall '" : "body '") + g.name + "'";
   char buf[640];
   if (d < 0.5)
     std::snprintf(buf, sizeof buf,
-                  "; it is %.2f d0 from the surface of %s: likely cause: fluid squeezed against that surface "
+                  "; it is %.3g d0 from the surface of %s: likely cause: fluid squeezed against that surface "
                   "(two surfaces closing faster than the fluid can leave the gap, or a contact too soft to keep "
                   "them apart: see the collision.* keys; numerics.surface_guard sets the keep-out distance)",
                   d, where.c_str());
   else
     std::snprintf(buf, sizeof buf,
-                  "; the nearest surface (%s) is %.2f d0 away: likely cause: a flow too fast or too under-resolved "
+                  "; the nearest surface (%s) is %.3g d0 away: likely cause: a flow too fast or too under-resolved "
                   "for this resolution (Mach number V/fluid.c above about 0.1, or too few particles across a "
                   "body or a gap: lower resolution.d0 or raise fluid.c)",
                   where.c_str(), d);
