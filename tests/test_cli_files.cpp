@@ -61,15 +61,6 @@ cli_test::Ended cli_with_file_limit(int blocks, const std::vector<std::string>& 
   return cli_test::Child("sh", sh).wait();
 }
 
-/// A process id that is not running (a child that has ended and been reaped).
-long dead_pid() {
-  const pid_t pid = ::fork();
-  if (pid == 0) ::_exit(0);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return static_cast<long>(pid);
-}
-
 }  // namespace
 
 TEST(CliFiles, OverwriteRefusesWhatParticulaDidNotWrite) {
@@ -184,7 +175,7 @@ TEST(CliFiles, ResumeRemovesStaleTemporaryFilesOnly) {
   const fs::path dir = fresh_dir("files_stale_temp");
   const fs::path run = dir / "run";
   ASSERT_EQ(cli(couette(run.string(), "0.01")).code, 0);
-  const std::string dead = std::to_string(dead_pid()), alive = std::to_string(::getpid());
+  const std::string dead = std::to_string(cli_test::dead_pid()), alive = std::to_string(::getpid());
   const std::vector<fs::path> stale{run / "checkpoint" / ("state.bin.tmp." + dead),
                                     run / "particles" / ("step_00000012.vtp.tmp." + dead),
                                     run / ("summary.json.tmp." + dead), run / ("particles.pvd.tmp." + dead)};

@@ -415,18 +415,6 @@ class TargetedMutator {
   std::vector<std::pair<std::size_t, std::size_t>> reals_;
 };
 
-/// The first CSV file in `dir` holding NaN or Inf, or "".
-std::string csv_with_non_finite(const fs::path& dir) {
-  for (const auto& e : fs::directory_iterator(dir)) {
-    if (e.path().extension() != ".csv") continue;
-    std::string text = cli_test::read_text(e.path());
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char ch) { return std::tolower(ch); });
-    if (text.find("nan") != std::string::npos || text.find("inf") != std::string::npos)
-      return e.path().filename().string();
-  }
-  return "";
-}
-
 }  // namespace
 
 TEST(CliMutation, RunOnTargetedMutantsEndsWithZeroTwoOrThree) {
@@ -437,7 +425,7 @@ TEST(CliMutation, RunOnTargetedMutantsEndsWithZeroTwoOrThree) {
     const auto r = cli_test::cli({"run", (dir / "base.toml").string(), "--out", (dir / "base").string(), "--quiet",
                                   "--no-plots"});
     ASSERT_EQ(r.code, 0) << r.output;
-    EXPECT_EQ(csv_with_non_finite(dir / "base"), "");
+    EXPECT_EQ(cli_test::csv_with_non_finite(dir / "base"), "");
   }
   TargetedMutator mutator(0x15f022);
   std::map<int, int> codes;
@@ -472,7 +460,7 @@ TEST(CliMutation, RunOnTargetedMutantsEndsWithZeroTwoOrThree) {
                   from == std::string::npos ? "" : r.output.substr(from, 160).c_str());
     }
     if (r.code == 0) {
-      const std::string bad = csv_with_non_finite(out);
+      const std::string bad = cli_test::csv_with_non_finite(out);
       non_finite += !bad.empty();
       EXPECT_EQ(bad, "") << "completed with NaN or Inf in " << bad << ": " << where;
     }

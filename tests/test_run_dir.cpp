@@ -38,14 +38,6 @@ struct InDirectory {
   ~InDirectory() { fs::current_path(old); }
 };
 
-long dead_pid() {
-  const pid_t pid = ::fork();
-  if (pid == 0) ::_exit(0);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return static_cast<long>(pid);
-}
-
 }  // namespace
 
 TEST(RunDir, MarkerRoundTripAndRefusals) {
@@ -154,7 +146,7 @@ TEST(RunDir, RollbackPutsTheOldRunBack) {
 
 TEST(RunDir, AnOldRunLeftAsideByAKilledParticulaIsNotedAndKept) {
   const fs::path dir = fresh_dir("rundir_stale_aside");
-  const fs::path left = dir / (".run.old." + std::to_string(dead_pid()));
+  const fs::path left = dir / (".run.old." + std::to_string(cli_test::dead_pid()));
   make_run(left);
   RunDirectory rd(dir / "run", false, RunMarker{MarkedKind::Run, 1});
   ASSERT_EQ(rd.notes().size(), 1u);
@@ -166,7 +158,7 @@ TEST(RunDir, AnOldRunLeftAsideByAKilledParticulaIsNotedAndKept) {
 TEST(RunDir, StaleTemporaryFilesOfParticulaAreRemoved) {
   const fs::path dir = fresh_dir("rundir_temp");
   make_run(dir);
-  const std::string dead = std::to_string(dead_pid());
+  const std::string dead = std::to_string(cli_test::dead_pid());
   write_text(dir / "checkpoint" / ("state.bin.tmp." + dead), "x");
   write_text(dir / "particles" / ("step_00000001.vtp.tmp." + dead), "x");
   write_text(dir / ("thesis.tex.tmp." + dead), "mine");

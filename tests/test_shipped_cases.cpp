@@ -54,18 +54,6 @@ const Coarse kPaper[] = {{"falling_cylinder", "2.5e-4"},
 /// gtest names the parameter by its case.
 void PrintTo(const Coarse& k, std::ostream* os) { *os << k.name << " at d0 = " << k.d0; }
 
-/// Whether any cell of the CSV files in `dir` is NaN or Inf.
-std::string non_finite_output(const fs::path& dir) {
-  for (const auto& e : fs::directory_iterator(dir)) {
-    if (e.path().extension() != ".csv") continue;
-    std::string text = cli_test::read_text(e.path());
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char ch) { return std::tolower(ch); });
-    if (text.find("nan") != std::string::npos || text.find("inf") != std::string::npos)
-      return e.path().filename().string();
-  }
-  return "";
-}
-
 class TwiceTheEndTime : public ::testing::TestWithParam<Coarse> {};
 
 }  // namespace
@@ -90,7 +78,7 @@ TEST_P(TwiceTheEndTime, RunsWithoutNumericalFailure) {
               end.c_str(), c.t_end, r.code, steps.c_str(), wall);
   EXPECT_EQ(r.code, 0) << k.name << " at d0 = " << k.d0 << " to t = " << end << " s:\n" << r.output;
   if (r.code == 0) {
-    EXPECT_EQ(non_finite_output(out), "") << "a completed run wrote NaN or Inf";
+    EXPECT_EQ(cli_test::csv_with_non_finite(out), "") << "a completed run wrote NaN or Inf";
   }
   fs::remove_all(out.parent_path());
 }
