@@ -215,7 +215,7 @@ PARTICULA_HD real rhie_chow_at(const SweepContext& c, std::size_t i, const real*
 /// out: the wall pressure is a condition on the fluid beside the surface, and two surfaces that
 /// read each other's P.20 pressures across a gap narrower than the kernel support form a loop
 /// that the conditioning guard allows to amplify (weights up to 2 in magnitude), which ran away
-/// in a body resting against a wall (docs/method-notes.md, "Unresolved films"). Box corners
+/// in a body resting against a wall (docs/method-notes.md, "Sharp corners"). Box corners
 /// (normals at 90 degrees) and a body's own surface keep the paper's treatment.
 PARTICULA_HD bool surface_across_a_gap(const SweepContext& c, std::size_t i, std::uint32_t j) {
   return j < c.nb && c.group != nullptr && c.normal != nullptr && c.kind[j] == Kind::Boundary &&
