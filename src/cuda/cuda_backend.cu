@@ -141,7 +141,7 @@ enum Counter {
 class CudaBackend final : public DeviceBackend {
  public:
   CudaBackend(const PhysicsParams& prm, const GridGeometry& grid, const WendlandC2& kernel, const Particles& P)
-      : grid_(grid), kernel_(kernel), d0_(prm.d0), kernel_normals_(prm.kernel_normals),
+      : grid_(grid), kernel_(kernel), d0_(prm.d0), film_gap_(prm.film_gap * prm.d0), kernel_normals_(prm.kernel_normals),
         fatehi_manzari_(prm.fatehi_manzari), single_layer_(prm.single_layer) {
     counters_.resize(kCounters);
     zero_counters();
@@ -171,6 +171,7 @@ class CudaBackend final : public DeviceBackend {
     for (auto* a : {&v_n_, &v_s_, &lapV_, &G_, &shift_dir_, &lap_esum_}) a->resize(n_);
     for (auto* a : {&gradV_, &gradV_n_}) a->resize(n_);
     for (auto* a : {&near_a_, &near_b_}) a->resize(n_);
+    film_.resize(n_);
     p_new_.resize(nb_);
     count_.resize(n_);
     cell_of_.resize(n_);
@@ -291,6 +292,11 @@ class CudaBackend final : public DeviceBackend {
       if (i < nb && kernel_normals && kind[i] == Kind::Boundary && !kernel_normal(g.normal_sum, normal[i]))
         atomicAdd(&counters[kNormalFallback], 1ull);
     });
+    // The unresolved-film fractions of this step (a second pass: the first one writes the normals).
+    const SweepContext cf = context();
+    const real film_gap = film_gap_;
+    real* film = film_.data();
+    each(0, n, [=] __device__(std::size_t i) { film[i] = film_fraction_at(cf, i, film_gap); });
     collect_counters(cnt);
   }
 
@@ -537,6 +543,7 @@ class CudaBackend final : public DeviceBackend {
     c.normal = normal_.data();
     c.near_a = near_a_.data();
     c.near_b = near_b_.data();
+    c.film = film_.data();
     c.fatehi_manzari = fatehi_manzari_;
     c.grad_w = grad_w_.data();
     c.lap_w = lap_w_.data();
@@ -574,7 +581,7 @@ class CudaBackend final : public DeviceBackend {
  private:
   GridGeometry grid_;
   WendlandC2 kernel_;
-  real d0_;
+  real d0_, film_gap_;
   bool kernel_normals_, fatehi_manzari_, single_layer_;
   std::size_t n_ = 0, nb_ = 0, pairs_ = 0;
   real min_distance_ = 0;
@@ -589,7 +596,7 @@ class CudaBackend final : public DeviceBackend {
   DArray<real> rho_n_, rho_s_, p_n_, vol_, rc_, div_v_, p_new_, scratch_real_;
   DArray<Vec2> v_n_, v_s_, lapV_, G_, shift_dir_, lap_esum_, grad_w_;
   DArray<Mat2> gradV_, gradV_n_;
-  DArray<real> lap_w_;
+  DArray<real> lap_w_, film_;
   DArray<std::uint32_t> count_, j_, cell_of_, sorted_, keys_, cell_start_, near_a_, near_b_;
   DArray<std::size_t> order_;
   DArray<unsigned char> scratch_bytes_;

@@ -70,7 +70,6 @@ StageParams Solver::stage_params(real dt) const {
   s.c = prm_.c;
   s.p0 = prm_.p0;
   s.kappa = prm_.odd_even_damping * prm_.c * prm_.h;  // kappa = alpha c h (method-notes)
-  s.film_gap = prm_.film_gap * prm_.d0;
   s.single_layer = prm_.single_layer;
   return s;
 }
@@ -126,6 +125,7 @@ SweepContext Solver::sweep_context() const {
   c.normal = P_.normal.data();
   c.near_a = near_a_.empty() ? nullptr : near_a_.data();
   c.near_b = near_b_.empty() ? nullptr : near_b_.data();
+  c.film = film_.empty() ? nullptr : film_.data();
   c.fatehi_manzari = prm_.fatehi_manzari;
   c.grad_w = pair_grad_w_.data();
   c.lap_w = pair_lap_w_.data();
@@ -183,6 +183,12 @@ void Solver::geometry_sweep() {
   counters_.singular_B += bad_B;
   counters_.singular_Bhat += bad_Bhat;
   counters_.normal_fallback += bad_normal;
+  // The unresolved-film fractions of this step, from the nearest surfaces and the normals just set.
+  film_.resize(n);
+  const SweepContext cf = sweep_context();
+  const real film_gap = prm_.film_gap * prm_.d0;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) film_[i] = film_fraction_at(cf, i, film_gap);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -244,6 +244,7 @@ class Solver {
   std::vector<Vec2> lapV_, G_, v_n_, v_s_, shift_dir_, lap_esum_;
   // per-pair weights of the geometry sweep (solver/sweeps.hpp)
   std::vector<std::uint32_t> near_a_, near_b_;  // nearest surface particles (surface guard)
+  std::vector<real> film_;                      // unresolved-film fraction of each particle, this step
   std::vector<Vec2> pair_grad_w_;
   std::vector<real> pair_lap_w_;
   // GPU backend: the device holds the particle state; the host copy is refreshed on demand

@@ -67,6 +67,8 @@ struct SweepContext {
   // the nearest surface particles of each fluid particle, from this step's geometry sweep
   const std::uint32_t* near_a = nullptr;
   const std::uint32_t* near_b = nullptr;
+  // per particle: the unresolved-film fraction of this step (film_fraction_at; null: none)
+  const real* film = nullptr;
   bool fatehi_manzari = true;  // false: Morris Laplacian (baseline)
   // written by the geometry sweep
   const Vec2* grad_w = nullptr;    // per pair: w_j B_i gradW_ij (renormalized gradient weight, P.7)
@@ -264,7 +266,6 @@ struct StageParams {
   Vec2 f;              // body force, plus gravity when it is kept in the fluid
   real rho0 = 1000, c = 0, p0 = 0;
   real kappa = 0;      // coefficient of the velocity odd-even damping (m^2/s), see odd_even_velocity_at
-  real film_gap = 0;   // gap (m) below which a fluid particle between two surfaces is a film (0: off)
   bool single_layer = true;
 };
 
@@ -388,7 +389,8 @@ PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContext& c, std::size_t i
 }
 
 /// The unresolved-film fraction of fluid particle i (boundary/surface_guard.hpp, film_fraction)
-/// from its nearest surfaces of this step's geometry sweep; 0 for boundary particles.
+/// from its nearest surfaces of this step's geometry sweep; 0 for boundary particles. Computed
+/// once per step into SweepContext::film, after the geometry sweep (which writes the normals).
 PARTICULA_HD real film_fraction_at(const SweepContext& c, std::size_t i, real film_gap) {
   if (i < c.nb || !(film_gap > 0) || c.near_a == nullptr) return 0;
   return film_fraction(gather_surfaces(c.near_a[i], c.near_b[i], c.x, c.normal, nullptr), film_gap, c.domain, c.x[i]);
@@ -396,14 +398,16 @@ PARTICULA_HD real film_fraction_at(const SweepContext& c, std::size_t i, real fi
 
 /// Velocity derivatives of the new V at particle i, then its continuity stage from rho_start.
 /// In an unresolved film the volume change -rho div V is left out in proportion to the film
-/// fraction (the Rhie-Chow term stays: it relaxes the particle's pressure to its neighbours').
+/// fraction c.film[i] (the Rhie-Chow term stays: it relaxes the particle's pressure to its
+/// neighbours'). The fraction is read from an array: looked up here, per stage, it cost 12 % of
+/// the step (docs/performance.md).
 /// Race-free in one loop: the derivatives read V and the frozen volumes, never rho or P.
 PARTICULA_HD void derivatives_and_continuity_at(const SweepContext& c, std::size_t i, const Vec2* v,
                                                 const real* rho_start, const real* rc, const StageParams& s,
                                                 Mat2* grad_v, Vec2* lap_v, real* div_v, real* rho, real* p) {
   store_velocity_derivatives(c, i, v, grad_v, lap_v, div_v);
   if (!evolves_density(i, c.nb, c.kind[i], s.single_layer)) return;
-  const real resolved = 1 - film_fraction_at(c, i, s.film_gap);
+  const real resolved = c.film ? 1 - c.film[i] : real(1);
   continuity_stage(rho_start[i], resolved * div_v[i], rc[i], s, rho[i], p[i]);
 }
 
