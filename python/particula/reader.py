@@ -43,6 +43,9 @@ class Table(dict):
     def rows(self):
         return len(next(iter(self.values()))) if self else 0
 
+    def __repr__(self):
+        return "<particula.Table %s: %d rows, columns %s>" % (self.path, self.rows, ", ".join(self))
+
     def where(self, mask):
         """The rows where mask (a boolean array) is true, as a Table."""
         return Table({k: v[mask] for k, v in self.items()}, self.units, self.path)
@@ -129,6 +132,10 @@ class Snapshot(dict):
     @property
     def num_points(self):
         return len(self.points)
+
+    def __repr__(self):
+        return "<particula.Snapshot %s: t = %r s, %d points, arrays %s>" % (
+            self.path, self.time, self.num_points, ", ".join(self))
 
 
 def _vector2(a):
