@@ -269,8 +269,6 @@ void register_simulation(py::module_& m) {
       .def_property_readonly("backend",
                              [](const Simulation& s) { return std::string(s.solver->backend_name()); })
       .def_property_readonly("case_toml", [](const Simulation& s) { return resolved_case_toml(s.c); })
-      .def_property_readonly("case_source", [](const Simulation& s) { return s.c.source; })
-      .def_property_readonly("case_hash", [](const Simulation& s) { return s.case_hash; })
       .def_property_readonly("guard_events",
                              [](const Simulation& s) {
                                const SolverCounters& c = s.solver->counters();

@@ -113,3 +113,18 @@ def test_overwrite_and_resume(particula, tmp_path):
     assert np.all(np.diff(run.probes["profile"]["time"]) >= 0)
     with pytest.raises(particula.InputError, match="only time.end and output"):
         particula.resume(out, {"fluid.nu": 1e-5}, plots=False)
+
+
+def test_numerical_failure_of_a_run(particula, tmp_path):
+    # As in test_simulation: water with a far too low sound speed collapses in the first step.
+    sets = {"resolution.d0": 5e-3, "fluid.c": 0.05, "time.dt_max": 1e-3}
+    out = tmp_path / "failed"
+    with pytest.raises(particula.NumericalFailure, match="numerical failure at t = ") as e:
+        particula.run_case(case("hydrostatic"), out, sets, plots=False)
+    assert e.value.exit_code == 3 and e.value.run_dir == str(out)
+    assert (out / "checkpoint" / "failure.bin").exists()
+    result = particula.run_case(case("hydrostatic"), out, sets, plots=False, overwrite=True, check=False)
+    assert result.exit_code == 3 and "numerical failure" in result.message
+    run = result.read()
+    assert run.summary["status"] == "failed"
+    assert run.snapshots.times[-1] == run.summary["end_time"]  # the final snapshot is written
