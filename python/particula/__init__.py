@@ -1,0 +1,25 @@
+"""particula from Python: the solver of the `particula` command (weakly compressible SPH, rigid
+bodies in viscous flow) as a module, and a reader of its run directories.
+
+    import particula
+    sim = particula.Simulation("cases/couette.toml", {"resolution.d0": 1e-4})
+    sim.run_to(0.1)
+    sim.positions, sim.velocity, sim.pressure     # NumPy views of the solver's arrays
+    sim.write_checkpoint("state.bin")
+
+    particula.run_case("cases/falling_cylinder.toml", "runs/fc", {"resolution.d0": 2.5e-4})
+    run = particula.read_run("runs/fc")           # bodies, walls, probes, snapshots, summary
+
+Errors are the exceptions of particula.errors, one per exit code of the CLI, with its messages.
+"""
+from . import errors
+from .commands import RunResult, load_case, resume, run_case
+from .errors import (CaseError, InputError, InternalError, Interrupted, IoFailure, NumericalFailure,
+                     ParticulaError)
+from .reader import Run, Snapshot, Table, read_csv, read_pvd, read_run, read_vtp
+from .simulation import KIND_BOUNDARY, KIND_DUMMY, KIND_FLUID, Simulation
+
+__all__ = ["Simulation", "run_case", "resume", "load_case", "RunResult", "read_run", "read_csv", "read_vtp",
+           "read_pvd", "Run", "Snapshot", "Table", "KIND_FLUID", "KIND_BOUNDARY", "KIND_DUMMY", "errors",
+           "ParticulaError", "InputError", "CaseError", "NumericalFailure", "IoFailure", "Interrupted",
+           "InternalError"]

@@ -1,0 +1,86 @@
+"""particula.run_case and particula.resume: the CLI's `particula run` and `particula resume`,
+the same C++ code called in-process (the run directory is the one the CLI writes)."""
+import os
+import sys
+import tomllib
+
+from . import _core
+from . import errors
+from .overrides import override_list
+
+
+class RunResult:
+    """How a run ended: run_dir (str), exit_code (the CLI's: 0, or 3 for a numerical failure
+    with check=False), message (what the CLI printed on standard error)."""
+
+    def __init__(self, run_dir, exit_code, message):
+        self.run_dir = run_dir
+        self.exit_code = exit_code
+        self.message = message
+
+    def read(self):
+        """The run directory's content (particula.read_run)."""
+        from .reader import read_run
+        return read_run(self.run_dir)
+
+    def __repr__(self):
+        return "RunResult(run_dir=%r, exit_code=%d)" % (self.run_dir, self.exit_code)
+
+
+_ERRORS = {2: errors.InputError, 3: errors.NumericalFailure, 4: errors.IoFailure, 130: errors.Interrupted}
+
+
+def _error_line(text):
+    """The CLI's error message: the lines starting with "error: ", without that prefix."""
+    lines = [ln[len("error: "):] for ln in text.splitlines() if ln.startswith("error: ")]
+    return "\n".join(lines) if lines else text.strip()
+
+
+def _finish(code, text, run_dir, quiet, check):
+    """Echoes the runner's messages (unless quiet) and raises for a failed run (when check)."""
+    if text and (not quiet or code != 0):
+        sys.stderr.write(text)
+        sys.stderr.flush()
+    if code == 0 or (not check and code == 3):
+        return RunResult(run_dir, code, text)
+    message = _error_line(text)
+    if code == 130:
+        message = text.strip().splitlines()[-1] if text.strip() else "interrupted"
+    raise _ERRORS.get(code, errors.InternalError)(message, run_dir=run_dir)
+
+
+def load_case(case_file, overrides=None):
+    """The case as particula resolves it (every default filled in, overrides applied), as a
+    dict: what a run directory's case.toml holds. Raises CaseError with the CLI's message."""
+    return tomllib.loads(_core.resolved_case(os.fspath(case_file), override_list(overrides)))
+
+
+def run_case(case_file, out=None, overrides=None, *, threads=0, backend="cpu", overwrite=False, quiet=True,
+             plots=True, check=True):
+    """Runs a case into a run directory exactly as
+    `particula run CASE --out OUT --set k=v ... [--threads N] [--backend B] [--overwrite]` does
+    (same files, same exit codes, same rules for --overwrite), and returns a RunResult.
+
+    out: the run directory (default runs/<case name>, relative to the working directory);
+    overrides: {key: value} or ["key=value", ...] (particula.overrides.toml_value);
+    quiet: no progress line (the runner's messages are printed when it is False or on failure);
+    plots: draw DIR/plots/*.png at the end (tools/plot_run.py), as the CLI does.
+    A failed run raises the exception of its exit code (particula.errors; with check=False a
+    numerical failure returns a RunResult with exit_code 3 instead). One run at a time per
+    process: run cases in parallel in separate processes (concurrent.futures.ProcessPoolExecutor).
+    """
+    sets = override_list(overrides)
+    # The case is loaded first (the runner loads it again): a mistake in it raises CaseError with
+    # the file, line and key as attributes, and the default run directory is known.
+    name = load_case(case_file, sets)["name"]
+    run_dir = os.fspath(out) if out is not None else os.path.join("runs", name)
+    code, text = _core.run_command(os.fspath(case_file), run_dir, sets, threads, backend, overwrite, quiet, plots)
+    return _finish(code, text, run_dir, quiet, check)
+
+
+def resume(run_dir, overrides=None, *, threads=0, backend="cpu", quiet=True, plots=True, check=True):
+    """Continues a run from run_dir/checkpoint/state.bin exactly as `particula resume` does;
+    overrides may change only time.end and output.* keys. Returns a RunResult."""
+    code, text = _core.resume_command(os.fspath(run_dir), override_list(overrides), threads, backend, quiet, plots)
+    return _finish(code, text, os.fspath(run_dir), quiet, check)
+

@@ -1,0 +1,314 @@
+// particula._core.Simulation: a case loaded (load_case, with the --set overrides) and built
+// (build_scene) into a Solver, or a Solver restarted from a checkpoint as `particula resume` does;
+// stepped from Python; its particle fields exposed as NumPy views of the solver's arrays.
+#include <omp.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <memory>
+#include <type_traits>
+#include <utility>
+
+#include "bindings.hpp"
+#include "particula/case/load.hpp"
+#include "particula/run/checkpoint.hpp"
+#include "particula/run/limits.hpp"
+#include "particula/run/runner.hpp"
+#include "particula/scene/scene.hpp"
+
+namespace py = pybind11;
+namespace fs = std::filesystem;
+
+namespace particula::python {
+
+namespace {
+
+// The views below read Vec2 arrays as (n, 2) arrays of doubles.
+static_assert(std::is_standard_layout_v<Vec2> && sizeof(Vec2) == 2 * sizeof(real));
+static_assert(sizeof(Kind) == sizeof(std::uint8_t));
+
+/// A case and its solver.
+struct Simulation {
+  Case c;
+  std::uint64_t case_hash = 0;  // the case identity every checkpoint of it carries
+  std::unique_ptr<Solver> solver;
+
+  /// The particle state on the host (with the GPU backend, copied from the device when stale).
+  const Particles& particles() const { return std::as_const(*solver).particles(); }
+};
+
+/// Checks the backend before anything is built, as the CLI does; sets the OpenMP threads.
+void prepare(const std::string& backend, int threads) {
+  std::string why;
+  if (backend != "cpu" && backend != "cuda")
+    throw UsageError("backend '" + backend + "': unknown (cpu or cuda)");
+  if (backend == "cuda" && !cuda_backend_available(&why)) throw UsageError("backend cuda: " + why);
+  if (threads < 0) throw UsageError("threads must be 0 (all cores) or positive");
+  if (threads > 0) omp_set_num_threads(threads);
+}
+
+/// `particula run`'s set-up without the run directory: the case with its overrides, the size
+/// guard, the scene and a fresh solver.
+std::unique_ptr<Simulation> from_case(const fs::path& file, const std::vector<std::string>& overrides,
+                                      const std::string& backend, int threads) {
+  prepare(backend, threads);
+  auto sim = std::make_unique<Simulation>();
+  sim->c = load_case(file, overrides);
+  check_case_size(sim->c);  // before anything is allocated
+  sim->case_hash = case_identity_hash(resolved_case_toml(sim->c));
+  Scene scene = build_scene(sim->c);
+  scene.params.cuda = backend == "cuda";
+  sim->solver = std::make_unique<Solver>(scene.params, scene.domain, std::move(scene.particles),
+                                         std::move(scene.groups));
+  return sim;
+}
+
+/// `particula resume`'s set-up: the checkpoint read and checked against its case (with the
+/// overrides `resume` allows), the solver restarted from it exactly as it was.
+std::unique_ptr<Simulation> from_checkpoint(const fs::path& file, const std::vector<std::string>& overrides,
+                                            const std::string& backend, int threads) {
+  for (const auto& o : overrides)
+    if (!resume_override_allowed(o))
+      throw UsageError(
+          "--set " + o +
+          ": only time.end and output.* keys can be changed when resuming (the checkpoint fixes the rest "
+          "of the case)");
+  prepare(backend, threads);
+  auto sim = std::make_unique<Simulation>();
+  Checkpoint k = read_checkpoint(file);
+  sim->c = load_case_text(k.case_toml, file, overrides);
+  check_checkpoint_fits_case(k, sim->c, file);
+  sim->case_hash = k.case_hash;
+  const Domain domain{sim->c.domain_min, sim->c.domain_max, sim->c.periodic_x, sim->c.periodic_y};
+  PhysicsParams prm = physics_params(sim->c);
+  prm.cuda = backend == "cuda";
+  sim->solver = std::make_unique<Solver>(prm, domain, std::move(k.particles), std::move(k.groups),
+                                         SolverStart::Restart, k.time, k.step);
+  sim->solver->set_counters(k.counters);
+  return sim;
+}
+
+/// The checkpoint `particula run` writes, without output marks (a Simulation writes no outputs).
+void write_simulation_checkpoint(const Simulation& sim, const fs::path& file) {
+  const Solver& s = *sim.solver;
+  const std::string toml = resolved_case_toml(sim.c);
+  const real t = s.time();
+  const std::int64_t step = s.step_count();
+  const std::vector<OutputMark> no_marks;
+  write_checkpoint(
+      file, CheckpointView{toml, sim.case_hash, t, step, s.counters(), no_marks, s.particles(), s.groups()});
+}
+
+/// One step of at most max_dt (0: the stable step), without the GIL; a failure is raised.
+real step(Simulation& sim, real max_dt) {
+  std::optional<Failure> failure;
+  {
+    py::gil_scoped_release nogil;
+    failure = sim.solver->step(max_dt);
+  }
+  if (failure) throw StepFailure(*failure, sim.solver->time(), sim.solver->step_count());
+  return sim.solver->last_dt();
+}
+
+/// Steps until time t, the last step shortened to land on it (as the run loop lands on time.end);
+/// Ctrl-C is honoured between steps. Returns the number of steps taken.
+std::int64_t run_to(Simulation& sim, real t) {
+  const std::int64_t first = sim.solver->step_count();
+  const real eps = 1e-9 * std::abs(t);
+  while (sim.solver->time() < t - eps) {
+    step(sim, t - sim.solver->time());
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+  return sim.solver->step_count() - first;
+}
+
+/// Makes a view read-only: the solver owns the state, and writing into it would bypass the
+/// GPU upload and the rigid placement of boundary particles.
+py::array read_only(py::array a) {
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+/// A read-only view of `v` whose base is `owner` (the Python Simulation), so the memory lives
+/// as long as the view.
+template <class T>
+py::array view(const std::vector<T>& v, py::handle owner) {
+  return read_only(py::array_t<T>({v.size()}, {sizeof(T)}, v.data(), owner));
+}
+
+/// A Vec2 array as a read-only (n, 2) view.
+py::array view(const std::vector<Vec2>& v, py::handle owner) {
+  return read_only(py::array_t<real>({v.size(), std::size_t{2}}, {sizeof(Vec2), sizeof(real)},
+                                     reinterpret_cast<const real*>(v.data()), owner));
+}
+
+py::array kind_view(const std::vector<Kind>& v, py::handle owner) {
+  return read_only(py::array_t<std::uint8_t>({v.size()}, {sizeof(Kind)},
+                                             reinterpret_cast<const std::uint8_t*>(v.data()), owner));
+}
+
+/// Per particle: the case index of the body (or wall, with `walls`) its boundary particle
+/// belongs to, -1 for fluid particles and for the other kind of group (a copy).
+py::array_t<std::int32_t> group_index(const Simulation& sim, bool walls) {
+  const Particles& P = sim.particles();
+  const auto& groups = sim.solver->groups();
+  std::vector<std::int32_t> index_of_group(groups.size(), -1);
+  std::int32_t wall = 0;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    if (groups[g].is_wall && walls) index_of_group[g] = wall;
+    if (!groups[g].is_wall && !walls) index_of_group[g] = groups[g].body;
+    wall += groups[g].is_wall ? 1 : 0;
+  }
+  py::array_t<std::int32_t> out(static_cast<py::ssize_t>(P.size()));
+  auto o = out.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < P.size(); ++i)
+    o(static_cast<py::ssize_t>(i)) =
+        P.group[i] >= 0 ? index_of_group[static_cast<std::size_t>(P.group[i])] : -1;
+  return out;
+}
+
+/// Columns of per-group values (copies), one row per group selected.
+class GroupTable {
+ public:
+  explicit GroupTable(std::size_t rows) : rows_(rows) {}
+  void scalar(const char* name, const std::vector<real>& v) {
+    table_[name] = py::array_t<real>(v.size(), v.data());
+  }
+  void vector(const char* name, const std::vector<Vec2>& v) {
+    py::array_t<real> a({rows_, std::size_t{2}});
+    auto o = a.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < rows_; ++i) {
+      o(static_cast<py::ssize_t>(i), 0) = v[i].x;
+      o(static_cast<py::ssize_t>(i), 1) = v[i].y;
+    }
+    table_[name] = a;
+  }
+  py::dict& dict() { return table_; }
+
+ private:
+  std::size_t rows_;
+  py::dict table_;
+};
+
+const char* motion_name(Motion m) {
+  switch (m) {
+    case Motion::Fixed:
+      return "fixed";
+    case Motion::Prescribed:
+      return "prescribed";
+    case Motion::Free:
+      return "free";
+  }
+  return "?";
+}
+
+/// The state of the bodies (or walls) in case order, as a dict of NumPy arrays (copies):
+/// the columns of bodies.csv (walls.csv) and the mass properties.
+py::dict group_states(const Simulation& sim, bool walls) {
+  std::vector<const RigidGroup*> sel;
+  for (const auto& g : sim.solver->groups())
+    if (g.is_wall == walls) sel.push_back(&g);
+  auto column = [&](auto get) {
+    std::vector<std::decay_t<decltype(get(*sel[0]))>> v;
+    for (const RigidGroup* g : sel) v.push_back(get(*g));
+    return v;
+  };
+  GroupTable t(sel.size());
+  py::list names, motions;
+  for (const RigidGroup* g : sel) {
+    names.append(g->name);
+    motions.append(motion_name(g->motion));
+  }
+  t.dict()["name"] = names;
+  t.dict()["motion"] = motions;
+  t.vector("position", column([](const RigidGroup& g) { return g.pos; }));
+  t.vector("velocity", column([](const RigidGroup& g) { return g.vel; }));
+  t.scalar("angle", column([](const RigidGroup& g) { return g.angle; }));
+  t.scalar("omega", column([](const RigidGroup& g) { return g.omega; }));
+  t.vector("force", column([](const RigidGroup& g) { return g.force_pressure + g.force_viscous; }));
+  t.vector("force_pressure", column([](const RigidGroup& g) { return g.force_pressure; }));
+  t.vector("force_viscous", column([](const RigidGroup& g) { return g.force_viscous; }));
+  t.scalar("torque", column([](const RigidGroup& g) { return g.torque; }));
+  if (!walls) {
+    t.vector("force_collision", column([](const RigidGroup& g) { return g.force_collision; }));
+    t.scalar("torque_collision", column([](const RigidGroup& g) { return g.torque_collision; }));
+    t.scalar("mass", column([](const RigidGroup& g) { return g.mass; }));
+    t.scalar("inertia", column([](const RigidGroup& g) { return g.inertia; }));
+    t.scalar("area", column([](const RigidGroup& g) { return g.area; }));
+  }
+  return t.dict();
+}
+
+/// Registers a read-only property returning a view of one particle array.
+template <class Get>
+void field(py::class_<Simulation>& cls, const char* name, Get get, const char* doc) {
+  cls.def_property_readonly(
+      name, [get](py::object self) { return view(get(self.cast<const Simulation&>().particles()), self); },
+      doc);
+}
+
+}  // namespace
+
+void register_simulation(py::module_& m) {
+  py::class_<Simulation> cls(m, "Simulation", "A case built into a solver (use particula.Simulation)");
+  cls.def_static("from_case", &from_case, py::arg("case_file"), py::arg("overrides"), py::arg("backend"),
+                 py::arg("threads"))
+      .def_static("from_checkpoint", &from_checkpoint, py::arg("file"), py::arg("overrides"),
+                  py::arg("backend"), py::arg("threads"))
+      .def("write_checkpoint", &write_simulation_checkpoint, py::arg("file"))
+      .def("step", &step, py::arg("max_dt") = 0.0)
+      .def("run_to", &run_to, py::arg("t"))
+      .def_property_readonly("time", [](const Simulation& s) { return s.solver->time(); })
+      .def_property_readonly("step_count", [](const Simulation& s) { return s.solver->step_count(); })
+      .def_property_readonly("dt", [](const Simulation& s) { return s.solver->last_dt(); })
+      .def_property_readonly("n_particles", [](const Simulation& s) { return s.solver->particle_count(); })
+      .def_property_readonly("n_boundary", [](const Simulation& s) { return s.particles().n_boundary; })
+      .def_property_readonly("d0", [](const Simulation& s) { return s.solver->params().d0; })
+      .def_property_readonly("h", [](const Simulation& s) { return s.solver->params().h; })
+      .def_property_readonly("backend",
+                             [](const Simulation& s) { return std::string(s.solver->backend_name()); })
+      .def_property_readonly("case_toml", [](const Simulation& s) { return resolved_case_toml(s.c); })
+      .def_property_readonly("guard_events",
+                             [](const Simulation& s) {
+                               const SolverCounters& c = s.solver->counters();
+                               py::dict d;
+                               d["singular_B"] = c.singular_B;
+                               d["singular_Bhat"] = c.singular_Bhat;
+                               d["wall_pressure_kept"] = c.wall_pressure_kept;
+                               d["wall_pressure_extrapolated"] = c.wall_pressure_extrapolated;
+                               d["normal_fallback"] = c.normal_fallback;
+                               d["surface_pushed"] = c.surface_pushed;
+                               d["gap_squeezed"] = c.gap_squeezed;
+                               return d;
+                             })
+      .def("body_states", [](const Simulation& s) { return group_states(s, false); })
+      .def("wall_states", [](const Simulation& s) { return group_states(s, true); })
+      .def_property_readonly("body_index", [](const Simulation& s) { return group_index(s, false); })
+      .def_property_readonly("wall_index", [](const Simulation& s) { return group_index(s, true); });
+  field(
+      cls, "positions", [](const Particles& P) -> const auto& { return P.x; }, "(n, 2) positions (m), view");
+  field(
+      cls, "velocity", [](const Particles& P) -> const auto& { return P.v; }, "(n, 2) velocity (m/s), view");
+  field(
+      cls, "density", [](const Particles& P) -> const auto& { return P.rho; }, "(n,) density (kg/m^3), view");
+  field(
+      cls, "pressure", [](const Particles& P) -> const auto& { return P.p; }, "(n,) pressure (Pa), view");
+  field(
+      cls, "mass", [](const Particles& P) -> const auto& { return P.m; },
+      "(n,) mass per unit depth (kg/m), view");
+  field(
+      cls, "group", [](const Particles& P) -> const auto& { return P.group; },
+      "(n,) rigid group, -1 fluid, view");
+  field(
+      cls, "id", [](const Particles& P) -> const auto& { return P.id; }, "(n,) stable particle id, view");
+  field(
+      cls, "normals", [](const Particles& P) -> const auto& { return P.normal; },
+      "(n_boundary, 2) surface normals of the boundary particles, view");
+  cls.def_property_readonly(
+      "kind",
+      [](py::object self) { return kind_view(self.cast<const Simulation&>().particles().kind, self); },
+      "(n,) uint8 kind: 0 fluid, 1 boundary (wall or body surface), 2 dummy, view");
+}
+
+}  // namespace particula::python

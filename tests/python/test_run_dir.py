@@ -1,0 +1,130 @@
+"""particula.run_case / resume (the CLI's runner) and particula.read_run on what they write."""
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+from conftest import COUETTE, ROOT, case
+
+SETTLING = os.path.join(ROOT, "tests", "python", "data", "settling.toml")
+BINARY = os.environ.get("PARTICULA_BINARY", os.path.join(ROOT, "build", "release", "particula"))
+
+
+@pytest.fixture(scope="module")
+def settling_run(particula, tmp_path_factory):
+    out = tmp_path_factory.mktemp("runs") / "settling"
+    result = particula.run_case(SETTLING, out, plots=False)
+    assert result.exit_code == 0 and result.run_dir == str(out)
+    return particula.read_run(out)
+
+
+def test_run_directory_is_the_clis(settling_run):
+    names = set(os.listdir(settling_run.dir))
+    assert {"case.toml", "summary.json", "log.txt", "bodies.csv", "walls.csv", "probe_midline.csv",
+            "particles.pvd", "particles", "checkpoint", ".particula-run"} <= names
+    assert settling_run.summary["status"] == "completed"
+    assert settling_run.case["name"] == "settling"
+
+
+def test_every_snapshot_matches_summary_and_bodies(settling_run):
+    run = settling_run
+    summary = run.summary
+    snaps = run.snapshots
+    # snapshot_interval 0.005 to time.end 0.01: t = 0, 0.005, 0.01
+    assert len(snaps) == 3
+    assert snaps.times[0] == 0 and snaps.times[-1] == summary["end_time"]
+    body_times = set(run.bodies["time"])
+    for snap in snaps:
+        assert snap.num_points == summary["particles"], snap.path
+        assert snap.time in body_times, snap.time  # written at an output time, the same double
+        assert np.count_nonzero(snap["kind"] == 0) == summary["fluid_particles"]
+        assert snap["velocity"].shape == (summary["particles"], 2)
+        assert sorted(snap["id"]) == list(range(summary["particles"]))
+    # bodies.csv: one row per output time (interval 0.0025), for the one body
+    times = np.unique(run.bodies["time"])
+    assert np.allclose(times, [0, 0.0025, 0.005, 0.0075, 0.01], rtol=0, atol=1e-15)
+    assert np.array_equal(run.bodies["body"], np.zeros(len(times)))
+    assert run.walls.rows == 4 * len(times)
+    assert np.array_equal(run.wall(2)["time"], times)
+
+
+def test_reader_agrees_with_the_module_bitwise(particula, settling_run):
+    # The module stepped to the same output times as the runner lands on gives the same state:
+    # the last snapshot and bodies.csv's last row hold exactly its values.
+    run = settling_run
+    sim = particula.Simulation(SETTLING)
+    for k in range(1, 5):
+        sim.run_to(k * 0.0025)
+    sim.run_to(run.case["time"]["end"])
+    last = run.snapshots[-1]
+    assert last.time == sim.time
+    order = np.argsort(sim.id)
+    by_id = np.argsort(last["id"])
+    assert np.array_equal(last.points[by_id], sim.positions[order])
+    assert np.array_equal(last["velocity"][by_id], sim.velocity[order])
+    assert np.array_equal(last["pressure"][by_id], sim.pressure[order])
+    assert np.array_equal(last["kind"][by_id], sim.kind[order])
+    b = sim.body_states()
+    row = run.body(0).where(run.body(0)["time"] == sim.time)
+    assert row.rows == 1
+    assert (row["x"][0], row["y"][0]) == tuple(b["position"][0])
+    assert (row["vx"][0], row["vy"][0]) == tuple(b["velocity"][0])
+    assert (row["fx"][0], row["fy"][0]) == tuple(b["force"][0])
+
+
+def test_probe_as_profiles(settling_run):
+    p = settling_run.probe("midline")
+    assert len(p["time"]) == 3 and len(p["y"]) == 16
+    assert p["vx"].shape == (3, 16) and p["p"].shape == (3, 16)
+    assert p["y"][0] == 0 and p["y"][-1] == 0.015
+
+
+def test_errors_are_the_clis(particula, tmp_path):
+    taken = tmp_path / "a_file"
+    taken.write_text("mine")
+    with pytest.raises(particula.InputError) as e:
+        particula.run_case(case("couette"), taken, COUETTE, plots=False)
+    assert e.value.exit_code == 2
+    cli = subprocess.run([BINARY, "run", case("couette"), "--out", str(taken), "--set", "time.end=0.1",
+                          "--no-plots", "--quiet"], capture_output=True, text=True)
+    assert cli.returncode == 2
+    assert "error: " + str(e.value) == cli.stderr.strip()
+    with pytest.raises(particula.CaseError) as e:
+        particula.run_case(case("couette"), tmp_path / "x", {"fluid.nuu": 1})
+    cli = subprocess.run([BINARY, "run", case("couette"), "--out", str(tmp_path / "x"), "--set", "fluid.nuu=1"],
+                         capture_output=True, text=True)
+    assert "error: " + str(e.value) == cli.stderr.strip()
+    assert not (tmp_path / "x").exists()
+
+
+def test_overwrite_and_resume(particula, tmp_path):
+    out = tmp_path / "couette"
+    sets = COUETTE
+    particula.run_case(case("couette"), out, sets, plots=False)
+    with pytest.raises(particula.InputError, match="overwrite"):
+        particula.run_case(case("couette"), out, sets, plots=False)
+    particula.run_case(case("couette"), out, sets, plots=False, overwrite=True)
+    result = particula.resume(out, {"time.end": 0.2}, plots=False)
+    run = result.read()
+    assert run.summary["end_time"] == pytest.approx(0.2, rel=1e-12)
+    assert run.summary["resumed_from"] == pytest.approx(0.1, rel=1e-12)
+    assert run.snapshots.times[-1] == run.summary["end_time"]
+    assert np.all(np.diff(run.probes["profile"]["time"]) >= 0)
+    with pytest.raises(particula.InputError, match="only time.end and output"):
+        particula.resume(out, {"fluid.nu": 1e-5}, plots=False)
+
+
+def test_numerical_failure_of_a_run(particula, tmp_path):
+    # As in test_simulation: water with a far too low sound speed collapses in the first step.
+    sets = {"resolution.d0": 5e-3, "fluid.c": 0.05, "time.dt_max": 1e-3}
+    out = tmp_path / "failed"
+    with pytest.raises(particula.NumericalFailure, match="numerical failure at t = ") as e:
+        particula.run_case(case("hydrostatic"), out, sets, plots=False)
+    assert e.value.exit_code == 3 and e.value.run_dir == str(out)
+    assert (out / "checkpoint" / "failure.bin").exists()
+    result = particula.run_case(case("hydrostatic"), out, sets, plots=False, overwrite=True, check=False)
+    assert result.exit_code == 3 and "numerical failure" in result.message
+    run = result.read()
+    assert run.summary["status"] == "failed"
+    assert run.snapshots.times[-1] == run.summary["end_time"]  # the final snapshot is written
