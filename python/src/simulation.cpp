@@ -273,13 +273,7 @@ void register_simulation(py::module_& m) {
                              [](const Simulation& s) {
                                const SolverCounters& c = s.solver->counters();
                                py::dict d;
-                               d["singular_B"] = c.singular_B;
-                               d["singular_Bhat"] = c.singular_Bhat;
-                               d["wall_pressure_kept"] = c.wall_pressure_kept;
-                               d["wall_pressure_extrapolated"] = c.wall_pressure_extrapolated;
-                               d["normal_fallback"] = c.normal_fallback;
-                               d["surface_pushed"] = c.surface_pushed;
-                               d["gap_squeezed"] = c.gap_squeezed;
+                               for (const auto& [name, count] : guard_events(c)) d[name] = count;
                                return d;
                              })
       .def("body_states", [](const Simulation& s) { return group_states(s, false); })

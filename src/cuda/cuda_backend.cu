@@ -134,7 +134,8 @@ __global__ void group_loads_kernel(const GroupRange* ranges, const Kind* kind, c
 }
 
 enum Counter {
-  kSingularB = 0, kSingularBhat, kWallKept, kWallExtrapolated, kNormalFallback, kSurfacePushed, kGapSqueezed, kUnhealthy,
+  kSingularB = 0, kSingularBhat, kWallKept, kWallExtrapolated, kNormalFallback, kSurfacePushed, kGapSqueezed, kIsolatedLeftOut,
+  kUnhealthy,
   kCounters
 };
 
@@ -172,6 +173,7 @@ class CudaBackend final : public DeviceBackend {
     for (auto* a : {&gradV_, &gradV_n_}) a->resize(n_);
     for (auto* a : {&near_a_, &near_b_}) a->resize(n_);
     film_.resize(n_);
+    isolated_.resize(n_);
     p_new_.resize(nb_);
     count_.resize(n_);
     cell_of_.resize(n_);
@@ -280,8 +282,12 @@ class CudaBackend final : public DeviceBackend {
     Vec2* normal = normal_.data();
     const Kind* kind = kind_.data();
     unsigned long long* counters = counters_.data();
+    std::uint8_t* isolated_out = isolated_.data();
+    const real one_neighbour = d0 * d0 * kernel_.W(d0);
     each(0, n, [=] __device__(std::size_t i) {
       const GeometryAt g = geometry_at(c, i, d0, grad_w, lap_w);
+      isolated_out[i] = i >= nb && isolated(g.others_fluid_support, one_neighbour, g.near.a) ? 1 : 0;
+      if (isolated_out[i]) atomicAdd(&counters[kIsolatedLeftOut], 1ull);
       shift_dir[i] = g.shift_direction;
       lap_esum[i] = g.lap_esum;
       near_a[i] = g.near.a;
@@ -544,6 +550,7 @@ class CudaBackend final : public DeviceBackend {
     c.near_a = near_a_.data();
     c.near_b = near_b_.data();
     c.film = film_.data();
+    c.isolated = isolated_.data();
     c.fatehi_manzari = fatehi_manzari_;
     c.grad_w = grad_w_.data();
     c.lap_w = lap_w_.data();
@@ -575,6 +582,7 @@ class CudaBackend final : public DeviceBackend {
     cnt.normal_fallback += static_cast<std::int64_t>(h[kNormalFallback]);
     cnt.surface_pushed += static_cast<std::int64_t>(h[kSurfacePushed]);
     cnt.gap_squeezed += static_cast<std::int64_t>(h[kGapSqueezed]);
+    cnt.isolated_left_out += static_cast<std::int64_t>(h[kIsolatedLeftOut]);
     zero_counters();
   }
 
@@ -597,6 +605,7 @@ class CudaBackend final : public DeviceBackend {
   DArray<Vec2> v_n_, v_s_, lapV_, G_, shift_dir_, lap_esum_, grad_w_;
   DArray<Mat2> gradV_, gradV_n_;
   DArray<real> lap_w_, film_;
+  DArray<std::uint8_t> isolated_;
   DArray<std::uint32_t> count_, j_, cell_of_, sorted_, keys_, cell_start_, near_a_, near_b_;
   DArray<std::size_t> order_;
   DArray<unsigned char> scratch_bytes_;

@@ -74,7 +74,7 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
   if (!std::isfinite(c.time) || c.time < 0 || c.step < 0) fail("time or step");
   for (std::int64_t counter : {c.counters.singular_B, c.counters.singular_Bhat, c.counters.wall_pressure_kept,
                                c.counters.wall_pressure_extrapolated, c.counters.normal_fallback,
-                               c.counters.surface_pushed, c.counters.gap_squeezed})
+                               c.counters.surface_pushed, c.counters.gap_squeezed, c.counters.isolated_left_out})
     if (counter < 0) fail("negative guard counter");
   if (nb > n) fail("more boundary particles than particles");
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) fail("too many particles");

@@ -524,6 +524,47 @@ std::vector<ValidationCheck> check_sheared_suspension(const fs::path& run_dir, c
   return out;
 }
 
+std::vector<ValidationCheck> check_dilute_viscosity(const fs::path& run_dir, const Case& c, double min_strain) {
+  const std::size_t bottom = wall_at_y(c, c.domain_min.y), top = wall_at_y(c, c.domain_max.y);
+  const std::vector<WallTrack> walls = read_wall_tracks(run_dir, c.walls.size());
+  const WallTrack &B = walls[bottom], &T = walls[top];
+  if (T.t.size() < 2 || B.t.size() != T.t.size())
+    throw io::IoError(fmt::format("'{}': fewer than two rows", (run_dir / "walls.csv").string()));
+  const double L = c.domain_max.x - c.domain_min.x, H = c.domain_max.y - c.domain_min.y;
+  const double gamma = (c.walls[top].velocity.x - c.walls[bottom].velocity.x) / H;
+  double solid = 0;
+  for (const BodySpec& b : c.bodies) solid += M_PI * b.radius * b.radius;
+  const double phi = solid / (L * H), from = 0.5 * T.t.back();
+  // The relative viscosity of every row of the second half, then its mean and the standard error
+  // from 10 block means (the rows are correlated over a few strain units; blocks of one strain
+  // unit or more are nearly independent).
+  std::vector<double> mu_r;
+  for (std::size_t k = 0; k < T.t.size(); ++k)
+    if (T.t[k] >= from)
+      mu_r.push_back((B.fx[k] - T.fx[k]) / (2 * L) * (gamma >= 0 ? 1 : -1) / (c.mu() * std::fabs(gamma)));
+  constexpr std::size_t kBlocks = 10;
+  double mean = 0, block_var = 0;
+  const std::size_t per = mu_r.size() / kBlocks;
+  std::vector<double> blocks;
+  for (std::size_t b = 0; per > 0 && b < kBlocks; ++b) {
+    double s = 0;
+    for (std::size_t k = b * per; k < (b + 1) * per; ++k) s += mu_r[k];
+    blocks.push_back(s / static_cast<double>(per));
+  }
+  for (double v : blocks) mean += v / static_cast<double>(blocks.size());
+  for (double v : blocks) block_var += (v - mean) * (v - mean) / static_cast<double>(blocks.size() - 1);
+  const double err = blocks.size() > 1 ? std::sqrt(block_var / static_cast<double>(blocks.size())) : kInf;
+  const double intrinsic = (mean - 1) / phi, intrinsic_err = err / phi;
+  std::vector<ValidationCheck> out = check_sheared_suspension(run_dir, c, min_strain, 1, 1 + 4 * phi);
+  out.push_back(make_check(fmt::format("intrinsic viscosity (mu_r - 1) / phi at phi = {:.4f}, mu_r over t >= {:.3g} s", phi, from),
+                           intrinsic,
+                           fmt::format("{:.3g} ± {:.2g} (mu_r = {:.4f} ± {:.4f}, 2D Einstein {:.4f})", intrinsic,
+                                       intrinsic_err, mean, err, 1 + 2 * phi),
+                           "2 (2D Einstein, unbounded dilute)", "within [1, 3]",
+                           blocks.size() > 1 && intrinsic >= 1 && intrinsic <= 3));
+  return out;
+}
+
 std::vector<ValidationCheck> check_prescribed_squeeze(const fs::path& run_dir, const Case& c, double target_gap) {
   const std::vector<BodyTrack> tracks = tracks_or_throw(run_dir, c);
   const BodyTrack &A = tracks.at(0), &B = tracks.at(1);
@@ -638,6 +679,10 @@ std::vector<ValidationEntry> robustness_entries() {
   v.push_back(entry("sheared_suspension", with_containment([](const fs::path& d, const Case& c) {
                       return check_sheared_suspension(d, c, 10, 1.2, 6);
                     })));
+  for (const char* name : {"dilute_shear_phi005", "dilute_shear_phi010"})
+    v.push_back(entry(name, with_containment([](const fs::path& d, const Case& c) {
+                        return check_dilute_viscosity(d, c, 20);
+                      })));
   // The gap of 0.1 d0 is tied to d0: the fine level gets its own schedules.
   v.push_back(entry("prescribed_squeeze",
                     with_containment([](const fs::path& d, const Case& c) { return check_prescribed_squeeze(d, c, 0.1); }),

@@ -206,13 +206,7 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   summary.set("particle_steps_per_second", wall > 0 ? particle_steps / wall : 0.0);
   summary.set("interactions_per_second", wall > 0 ? interactions / wall : 0.0);
   io::JsonObject guards;
-  guards.set("singular_B", cnt.singular_B);
-  guards.set("singular_Bhat", cnt.singular_Bhat);
-  guards.set("wall_pressure_kept", cnt.wall_pressure_kept);
-  guards.set("wall_pressure_extrapolated", cnt.wall_pressure_extrapolated);
-  guards.set("normal_fallback", cnt.normal_fallback);
-  guards.set("surface_pushed", cnt.surface_pushed);
-  guards.set("gap_squeezed", cnt.gap_squeezed);
+  for (const auto& [name, count] : guard_events(cnt)) guards.set(name, count);
   summary.set("guard_events", guards);
   for (const auto& p : out.probes())
     if (auto e = p->last_error()) summary.set("probe_error_" + p->spec().name, *e);
@@ -224,9 +218,10 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
                       solver.time(), solver.step_count(), wall, wall > 0 ? particle_steps / wall : 0.0,
                       omp_get_max_threads()));
   rep.say(fmt::format("guard events: singular B {}, singular Bhat at fluid particles {}, wall pressure kept {}, "
-                      "extrapolated at corners {}, normal fallback {}, surface guard {} (closing gaps {})",
+                      "extrapolated at corners {}, normal fallback {}, surface guard {} (closing gaps {}), "
+                      "isolated particles left out of P.20 {}",
                       cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.wall_pressure_extrapolated,
-                      cnt.normal_fallback, cnt.surface_pushed, cnt.gap_squeezed));
+                      cnt.normal_fallback, cnt.surface_pushed, cnt.gap_squeezed, cnt.isolated_left_out));
   if (particle_error)
     rep.say(fmt::format("L2 error of the fluid particles' vx against the exact solution: {:.4f} % of the peak speed",
                         100 * *particle_error));

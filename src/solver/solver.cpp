@@ -126,6 +126,7 @@ SweepContext Solver::sweep_context() const {
   c.near_a = near_a_.empty() ? nullptr : near_a_.data();
   c.near_b = near_b_.empty() ? nullptr : near_b_.data();
   c.film = film_.empty() ? nullptr : film_.data();
+  c.isolated = isolated_.empty() ? nullptr : isolated_.data();
   c.fatehi_manzari = prm_.fatehi_manzari;
   c.grad_w = pair_grad_w_.data();
   c.lap_w = pair_lap_w_.data();
@@ -156,16 +157,21 @@ void Solver::geometry_sweep() {
   lap_esum_.resize(n);
   near_a_.resize(n);
   near_b_.resize(n);
+  isolated_.resize(n);
   pair_grad_w_.resize(nl_.pair_count());
   pair_lap_w_.resize(nl_.pair_count());
   const SweepContext c = sweep_context();
   Vec2* grad_w = pair_grad_w_.data();
   real* lap_w = pair_lap_w_.data();
   const bool kernel_normals = prm_.kernel_normals;
-  std::int64_t bad_B = 0, bad_Bhat = 0, bad_normal = 0;
-#pragma omp parallel for schedule(static) reduction(+ : bad_B, bad_Bhat, bad_normal)
+  const real one_neighbour = prm_.d0 * prm_.d0 * kernel_.W(prm_.d0);
+  std::uint8_t* isolated_out = isolated_.data();
+  std::int64_t bad_B = 0, bad_Bhat = 0, bad_normal = 0, lone = 0;
+#pragma omp parallel for schedule(static) reduction(+ : bad_B, bad_Bhat, bad_normal, lone)
   for (std::size_t i = 0; i < n; ++i) {
     const GeometryAt g = geometry_at(c, i, prm_.d0, grad_w, lap_w);
+    isolated_out[i] = i >= nb && isolated(g.others_fluid_support, one_neighbour, g.near.a) ? 1 : 0;
+    lone += isolated_out[i];
     B_[i] = g.B;
     Bhat_[i] = g.Bhat;
     rbar_[i] = g.rbar;
@@ -183,6 +189,7 @@ void Solver::geometry_sweep() {
   counters_.singular_B += bad_B;
   counters_.singular_Bhat += bad_Bhat;
   counters_.normal_fallback += bad_normal;
+  counters_.isolated_left_out += lone;
   // The unresolved-film fractions of this step, from the nearest surfaces and the normals just set.
   film_.resize(n);
   const SweepContext cf = sweep_context();

@@ -130,6 +130,16 @@ PARTICULA_HD real film_fraction(const NearSurfaces& ns, real film_gap, const Dom
   return f <= 0 ? real(0) : (f >= 1 ? real(1) : f);
 }
 
+/// An isolated fluid particle (docs/method-notes.md, "Isolated particles"): the fluid within its
+/// kernel support, its own volume left out, weighs less than one neighbour at one particle
+/// spacing, sum_{j fluid, j != i} w_j W_ij < d0^2 W(d0), and a surface is near. P.20 of a surface
+/// particle leaves such particles out (sweeps.hpp, wall_pressure_at): a lone particle in a wedge
+/// between two solids set the P.20 pressures of the surface particles around it, whose pressure
+/// gradient in turn drove the particle, a loop that shot it out at several times the sound speed.
+PARTICULA_HD bool isolated(real others_fluid_support, real one_neighbour_support, std::uint32_t nearest_surface) {
+  return nearest_surface != kNoSurface && others_fluid_support < one_neighbour_support;
+}
+
 /// Particle shifting never moves a particle towards a surface it is within `range` of (one
 /// particle spacing): the shift's component into that surface is removed.
 PARTICULA_HD Vec2 limit_shift_at_surfaces(Vec2 dr, const NearSurfaces& ns, real range, const Domain& domain, Vec2 x) {

@@ -76,6 +76,12 @@ std::vector<ValidationCheck> check_channel_cylinder(const std::filesystem::path&
 /// balancing (their sum within 10 % of either).
 std::vector<ValidationCheck> check_sheared_suspension(const std::filesystem::path& run_dir, const Case& c,
                                                       double min_strain, double lo, double hi);
+/// A dilute suspension of circles sheared as above: those checks (relative viscosity within
+/// [1, 1 + 4 phi]) and the intrinsic viscosity (mu_r - 1) / phi against the 2D Einstein value 2
+/// (within [1, 3]), mu_r the mean over the second half with its standard error from 10 block
+/// means. phi = the circles' area over the domain's.
+std::vector<ValidationCheck> check_dilute_viscosity(const std::filesystem::path& run_dir, const Case& c,
+                                                    double min_strain);
 /// Two prescribed bodies (0 and 1) pushed together and pulled apart along x: the smallest gap
 /// against `target_gap` d0 (within 0.02 d0), the force on body 0 resisting the approach while
 /// they close and holding them together while they part (lubrication and suction).

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "particula/bodies/collision.hpp"
@@ -81,7 +82,20 @@ struct SolverCounters {
   std::int64_t normal_fallback = 0;     // P.18 sum vanished -> analytic normal used
   std::int64_t surface_pushed = 0;      // fluid particle put back to the keep-out distance of a surface
   std::int64_t gap_squeezed = 0;        // fluid particle centred in a gap narrower than twice that
+  std::int64_t isolated_left_out = 0;   // isolated fluid particle left out of P.20 (particle-steps)
 };
+
+/// The counters by the names summary.json and the Python module give them (one list for both).
+inline std::vector<std::pair<const char*, std::int64_t>> guard_events(const SolverCounters& c) {
+  return {{"singular_B", c.singular_B},
+          {"singular_Bhat", c.singular_Bhat},
+          {"wall_pressure_kept", c.wall_pressure_kept},
+          {"wall_pressure_extrapolated", c.wall_pressure_extrapolated},
+          {"normal_fallback", c.normal_fallback},
+          {"surface_pushed", c.surface_pushed},
+          {"gap_squeezed", c.gap_squeezed},
+          {"isolated_left_out", c.isolated_left_out}};
+}
 
 /// Wall-clock seconds spent in each phase of the time step, summed over the steps taken (the
 /// benchmark's per-phase breakdown; a handful of clock reads per step).
@@ -245,6 +259,7 @@ class Solver {
   // per-pair weights of the geometry sweep (solver/sweeps.hpp)
   std::vector<std::uint32_t> near_a_, near_b_;  // nearest surface particles (surface guard)
   std::vector<real> film_;                      // unresolved-film fraction of each particle, this step
+  std::vector<std::uint8_t> isolated_;          // 1: isolated fluid particle this step (left out of P.20)
   std::vector<Vec2> pair_grad_w_;
   std::vector<real> pair_lap_w_;
   // GPU backend: the device holds the particle state; the host copy is refreshed on demand

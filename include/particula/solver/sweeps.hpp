@@ -69,6 +69,8 @@ struct SweepContext {
   const std::uint32_t* near_b = nullptr;
   // per particle: the unresolved-film fraction of this step (film_fraction_at; null: none)
   const real* film = nullptr;
+  // per particle: 1 for an isolated fluid particle this step, left out of P.20 (surface_guard.hpp; null: none)
+  const std::uint8_t* isolated = nullptr;
   bool fatehi_manzari = true;  // false: Morris Laplacian (baseline)
   // written by the geometry sweep
   const Vec2* grad_w = nullptr;    // per pair: w_j B_i gradW_ij (renormalized gradient weight, P.7)
@@ -86,6 +88,7 @@ struct GeometryAt {
   Vec2 shift_direction;  // sum_j (rbar^2 / r^2) e_ij of P.33, before the factor beta V_max dt
   Vec2 lap_esum;         // sum_j (Laplacian weight) e_ij
   NearestSurfaces near;  // fluid particles: the nearest surface particles (surface guard)
+  real others_fluid_support = 0;  // fluid particles: sum_{j fluid} w_j W_ij over the neighbours (isolated)
   bool B_ok = true;
   bool Bhat_ok = true;  // false only for a fluid particle's singular system: at boundary particles
                         // Bhat = k I is the designed guard (method-notes), not an event
@@ -133,11 +136,16 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
     out.normal_sum += (w * g.F) * g.rij;
     rsum += g.r;
     if (j < c.nb && i >= c.nb && c.kind[j] == Kind::Boundary) offer_surface(out.near, j, c.group[j], g.r * g.r);
+    if (j >= c.nb && i >= c.nb) out.others_fluid_support += w * c.kernel.W(g.r);
     grad_w[k] = g.rij;
     lap_w[k] = g.r;
   }
   out.B_ok = renormalization_tensor(S, out.B);
-  out.Bhat_ok = laplacian_correction_tensor(mom, out.B, out.Bhat, i < c.nb) || i < c.nb;
+  // Every particle's Bhat must be sound (positive definite, bounded): an indefinite Bhat makes
+  // pair terms of the Laplacian anti-diffusive, and at a fluid particle beside a void in the
+  // particle distribution (seen under two bodies resting on a floor) the viscous term then
+  // amplified the particle's own velocity by 10 % per step until it left the domain.
+  out.Bhat_ok = laplacian_correction_tensor(mom, out.B, out.Bhat, true) || i < c.nb;
   out.rbar = np > 0 ? rsum / static_cast<real>(np) : d0;
   const real rbar2 = out.rbar * out.rbar;
   const bool fluid = i >= c.nb;
@@ -241,6 +249,7 @@ PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContext& c, std::si
   for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
     const std::uint32_t j = c.j[k];
     if (surface_across_a_gap(c, i, j)) continue;
+    if (c.isolated && j >= c.nb && c.isolated[j]) continue;  // an isolated particle (surface_guard.hpp)
     wall_pressure_pair(s, c.grad_w[k], n, p[j], 0.5 * (rhoi + rho[j]), j >= c.nb);
   }
   if (wall_pressure_well_conditioned(s, min_den) && wall_pressure(s, a, nu_lap_v, f, n, p_out))
