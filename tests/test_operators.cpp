@@ -174,7 +174,7 @@ TEST(Operators, BhatSolvesItsDefiningSystem) {
   for (int k = 0; k < 6; ++k) laplacian_moments_pair(m, 0.8 + 0.1 * k, r[k], -0.3 * k - 0.2, {std::cos(ang[k]), std::sin(ang[k])});
   const Mat2 B{1.2, 0.1, 0.1, 0.9};
   Mat2 Bh;
-  ASSERT_TRUE(laplacian_correction_tensor(m, B, Bh, /*require_sound=*/false));
+  ASSERT_TRUE(laplacian_correction_tensor(m, B, Bh, BhatCheck::None));
   const real Bm[2][2] = {{B.xx, B.xy}, {B.yx, B.yy}}, Bhm[2][2] = {{Bh.xx, Bh.xy}, {Bh.yx, Bh.yy}};
   for (int c = 0; c < 2; ++c)
     for (int d = 0; d < 2; ++d) {
@@ -196,8 +196,8 @@ TEST(Operators, UnsoundBhatFallsBackToNormalizedIdentity) {
   LaplacianMoments m;
   for (int k = 0; k < 5; ++k) laplacian_moments_pair(m, 1.0, 1.0 + 0.2 * k, -1.0, {std::cos(0.05 * k), std::sin(0.05 * k)});
   Mat2 raw, guarded;
-  laplacian_correction_tensor(m, identity2(), raw, false);
-  const bool ok = laplacian_correction_tensor(m, identity2(), guarded, true);
+  laplacian_correction_tensor(m, identity2(), raw, BhatCheck::None);
+  const bool ok = laplacian_correction_tensor(m, identity2(), guarded, BhatCheck::Sound);
   if (!laplacian_correction_is_sound(raw)) {
     EXPECT_FALSE(ok);
     EXPECT_TRUE(laplacian_correction_is_sound(guarded) || (guarded.xx == 1 && guarded.yy == 1));
@@ -208,6 +208,12 @@ TEST(Operators, UnsoundBhatFallsBackToNormalizedIdentity) {
   EXPECT_FALSE(laplacian_correction_is_sound(Mat2{-27.5, -7.4, -7.4, 0.48}));
   EXPECT_FALSE(laplacian_correction_is_sound(Mat2{1444, 793, 793, 439}));
   EXPECT_TRUE(laplacian_correction_is_sound(Mat2{1.1, 0.1, 0.1, 0.9}));
+  // Fluid particles: indefinite but diffusive on average and bounded is kept (the exact Bhat
+  // beside a box corner); anti-diffusive (the one seen beside a void) or huge is not.
+  EXPECT_TRUE(laplacian_correction_is_bounded_diffusive(Mat2{-1.25, -0.02, -0.02, 6.26}));
+  EXPECT_FALSE(laplacian_correction_is_bounded_diffusive(Mat2{-459, -159, -159, -77}));
+  EXPECT_FALSE(laplacian_correction_is_bounded_diffusive(Mat2{-80, 0, 0, 90}));
+  EXPECT_FALSE(laplacian_correction_is_bounded_diffusive(Mat2{1444, 793, 793, 439}));
 }
 
 TEST(Operators, SingularRenormalizationFallsBackToIdentity) {

@@ -412,6 +412,10 @@ class CudaBackend final : public DeviceBackend {
         rho[i] = density_from_pressure(p_new[i], s.rho0, s.c, s.p0);
       });
     }
+    const std::uint8_t* lone = isolated_.data();
+    each(nb_, n_, [=] __device__(std::size_t i) {
+      if (lone[i] && isolated_pressure_at(c, i, p, p[i])) rho[i] = density_from_pressure(p[i], s.rho0, s.c, s.p0);
+    });
     collect_counters(cnt);
   }
 

@@ -297,6 +297,12 @@ void Solver::boundary_pressure() {
   }
   counters_.wall_pressure_kept += kept;
   counters_.wall_pressure_extrapolated += extrapolated;
+  // Isolated fluid particles take their pressure from the surfaces around them (sweeps.hpp).
+  const std::size_t n = isolated_.size() == P_.size() ? P_.size() : nb;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = nb; i < n; ++i)
+    if (isolated_[i] && isolated_pressure_at(c, i, P_.p.data(), P_.p[i]))
+      P_.rho[i] = density_from_pressure(P_.p[i], prm_.rho0, prm_.c, prm_.p0);
 }
 
 // ---------------------------------------------------------------------------------------------

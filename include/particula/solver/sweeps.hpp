@@ -141,11 +141,15 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
     lap_w[k] = g.r;
   }
   out.B_ok = renormalization_tensor(S, out.B);
-  // Every particle's Bhat must be sound (positive definite, bounded): an indefinite Bhat makes
-  // pair terms of the Laplacian anti-diffusive, and at a fluid particle beside a void in the
-  // particle distribution (seen under two bodies resting on a floor) the viscous term then
-  // amplified the particle's own velocity by 10 % per step until it left the domain.
-  out.Bhat_ok = laplacian_correction_tensor(mom, out.B, out.Bhat, true) || i < c.nb;
+  // Every particle's Bhat must be usable: sound (positive definite, bounded) at a boundary
+  // particle; bounded and diffusive on average at a fluid particle, where an anti-diffusive Bhat
+  // beside a void in the particle distribution (seen under two bodies resting on a floor) made
+  // the viscous term amplify the particle's own velocity by 10 % per step until it left the
+  // domain (operators.hpp, laplacian_correction_is_bounded_diffusive).
+  const bool boundary = i < c.nb;
+  out.Bhat_ok = laplacian_correction_tensor(mom, out.B, out.Bhat,
+                                            boundary ? BhatCheck::Sound : BhatCheck::BoundedDiffusive) ||
+                boundary;
   out.rbar = np > 0 ? rsum / static_cast<real>(np) : d0;
   const real rbar2 = out.rbar * out.rbar;
   const bool fluid = i >= c.nb;
@@ -259,10 +263,37 @@ PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContext& c, std::si
   for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
     const std::uint32_t j = c.j[k];
     if (j < c.nb) continue;
+    if (c.isolated && c.isolated[j]) continue;  // takes its pressure from the surfaces instead
     const Vec2 x_ji = c.domain.separation(c.x[j], xi);
     wall_extrapolation_pair(e, c.kernel.W(norm(x_ji)), p[j], rho[j], x_ji, balance);
   }
   return wall_extrapolation(e, p_out) ? WallPressureOutcome::Extrapolated : WallPressureOutcome::Kept;
+}
+
+/// Pressure of an isolated fluid particle (surface_guard.hpp, `isolated`; docs/method-notes.md,
+/// "Isolated particles"): the Shepard mean sum_j w_j W_ij P_j / sum_j w_j W_ij over the surface
+/// particles in its support, whose P.20 pressures come from the resolved fluid around them (an
+/// isolated particle is left out of P.20). The continuity equation of a particle with no fluid
+/// around it measures nothing but the motion of the surfaces that hold it: integrated, it
+/// compressed a lone particle in a closing gap to 1.3-2 rho0 while the fluid around the gap stayed
+/// at its hydrostatic density, and the burst ended the run (`settling_pile`, `mixed_shapes`). With
+/// its pressure taken from the surfaces, the particle is carried by the local pressure field and
+/// offers no spurious cushion. Returns false (p_out untouched) with no surface particle in support.
+PARTICULA_HD bool isolated_pressure_at(const SweepContext& c, std::size_t i, const real* p, real& p_out) {
+  real sw = 0, swp = 0;
+  const Vec2 xi = c.x[i];
+  const std::size_t b = c.first_pair(i), st = c.stride;
+  const std::uint32_t np = c.pair_count(i);
+  for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
+    const std::uint32_t j = c.j[k];
+    if (j >= c.nb || c.kind[j] != Kind::Boundary) continue;
+    const real w = c.vol[j] * c.kernel.W(norm(c.domain.separation(c.x[j], xi)));
+    sw += w;
+    swp += w * p[j];
+  }
+  if (!(sw > 0)) return false;
+  p_out = swp / sw;
+  return true;
 }
 
 // ---- pointwise updates of one particle ------------------------------------------------------
