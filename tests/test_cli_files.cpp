@@ -212,7 +212,9 @@ TEST(CliFiles, SigtermDuringALongOutputEndsWithinASecondAndTheResumedRunWritesIt
   ASSERT_EQ(cut.code, 130) << cut.output;
   EXPECT_LT(waited, 1.0) << "SIGTERM honoured within a second";
   EXPECT_TRUE(fs::exists(dir / "cut" / "checkpoint" / "state.bin"));
-  EXPECT_EQ(read_text(probe), "time,x,y,vx,vy,p,vx_exact\n") << "no partial rows";
+  EXPECT_EQ(read_text(probe),
+            "time,x,y,vx,vy,p,vx_exact\n# units: time [s], x [m], y [m], vx [m/s], vy [m/s], p [Pa], vx_exact [m/s]\n")
+      << "no partial rows";
   std::printf("SIGTERM during a long probe output: exit 130 after %.3f s\n", waited);
 
   const auto resumed = cli({"resume", (dir / "cut").string(), "--quiet", "--no-plots", "--threads", "1"});

@@ -154,7 +154,7 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
       exit_code = 130;
       break;
     }
-    failure = solver.step(out.next_event(c.t_end) - solver.time());
+    failure = solver.step_to(out.next_event(c.t_end));
     particle_steps += static_cast<double>(solver.particle_count());
     interactions += static_cast<double>(solver.last_pair_count());
     if (!failure) failure = write_outputs(false);

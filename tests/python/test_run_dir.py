@@ -5,7 +5,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import COUETTE, ROOT, case
+from conftest import COUETTE, HYDROSTATIC, ROOT, case
 
 SETTLING = os.path.join(ROOT, "tests", "python", "data", "settling.toml")
 BINARY = os.environ.get("PARTICULA_BINARY", os.path.join(ROOT, "build", "release", "particula"))
@@ -39,6 +39,11 @@ def test_every_snapshot_matches_summary_and_bodies(settling_run):
         assert snap.num_points == summary["particles"], snap.path
         assert snap.time in body_times, snap.time  # written at an output time, the same double
         assert np.count_nonzero(snap["kind"] == 0) == summary["fluid_particles"]
+        # bodies and walls by their case index, as in bodies.csv and walls.csv
+        fluid = snap["kind"] == 0
+        assert np.all(snap["body"][fluid] == -1) and np.all(snap["wall"][fluid] == -1)
+        assert set(snap["body"][~fluid]) == {-1, 0} and set(snap["wall"][~fluid]) == {-1, 0, 1, 2, 3}
+        assert np.all((snap["body"] == -1) | (snap["wall"] == -1))
         assert snap["velocity"].shape == (summary["particles"], 2)
         assert sorted(snap["id"]) == list(range(summary["particles"]))
     # bodies.csv: one row per output time (interval 0.0025), for the one body
@@ -47,6 +52,32 @@ def test_every_snapshot_matches_summary_and_bodies(settling_run):
     assert np.array_equal(run.bodies["body"], np.zeros(len(times)))
     assert run.walls.rows == 4 * len(times)
     assert np.array_equal(run.wall(2)["time"], times)
+
+
+def test_csv_units_and_decimal_output_times(particula, tmp_path):
+    # every CSV names its units; output times are the decimals they stand for (7 x 0.05 is
+    # written 0.35, not 0.35000000000000003)
+    out = tmp_path / "hydro"
+    particula.run_case(case("hydrostatic"), out, dict(HYDROSTATIC, **{"output.interval": 0.05, "time.end": 0.35}),
+                       plots=False)
+    run = particula.read_run(out)
+    assert run.walls.units == {"time": "s", "wall": "-", "fx": "N/m", "fy": "N/m", "fpx": "N/m", "fpy": "N/m",
+                               "fvx": "N/m", "fvy": "N/m"}
+    assert list(np.unique(run.walls["time"])) == [0, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35]
+    assert run.summary["end_time"] == 0.35
+    assert "0.35000000000000003" not in (out / "walls.csv").read_text()
+    # numpy's own readers skip the units line
+    data = np.genfromtxt(out / "walls.csv", delimiter=",", names=True)
+    assert data.dtype.names[:2] == ("time", "wall") and len(data) == run.walls.rows
+    assert np.loadtxt(out / "walls.csv", delimiter=",", skiprows=1).shape == (run.walls.rows, 8)
+
+
+def test_body_csv_units(settling_run):
+    units = settling_run.bodies.units
+    assert units["time"] == "s" and units["x"] == "m" and units["omega"] == "rad/s"
+    assert units["fx"] == "N/m" and units["torque"] == "N m/m" and units["fcy"] == "N/m"
+    assert set(settling_run.bodies) == set(units)
+    assert settling_run.probes["midline"].units["p"] == "Pa"
 
 
 def test_reader_agrees_with_the_module_bitwise(particula, settling_run):
