@@ -16,6 +16,7 @@
 
 #include "outputs.hpp"
 #include "particula/case/load.hpp"
+#include "particula/case/schema.hpp"
 #include "particula/io/atomic_file.hpp"
 #include "particula/io/json.hpp"
 #include "particula/io/log.hpp"
@@ -140,6 +141,29 @@ io::JsonObject failure_json(const Failure& f, real t, std::int64_t step) {
   return j;
 }
 
+/// The text of choice key `key` ("body[].shape") of element `index` of the case.
+std::string choice_text(const Case& c, const char* key, std::size_t index) {
+  const KeySpec* spec = find_key(key);
+  const std::optional<Value> v = spec ? spec->bind.get(c, index) : std::nullopt;
+  const auto* text = v ? std::get_if<std::string>(&*v) : nullptr;
+  return text ? *text : "";
+}
+
+/// The legend of the body and wall numbers of bodies.csv, walls.csv and the snapshots' `body`
+/// and `wall` arrays: index (case order), name, and for bodies shape and motion.
+void add_legend(io::JsonObject& summary, const Case& c) {
+  std::vector<io::JsonObject> bodies, walls;
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    io::JsonObject b;
+    b.set("index", k).set("name", c.bodies[k].name);
+    b.set("shape", choice_text(c, "body[].shape", k)).set("motion", choice_text(c, "body[].motion", k));
+    bodies.push_back(std::move(b));
+  }
+  for (std::size_t k = 0; k < c.walls.size(); ++k) walls.push_back(io::JsonObject().set("index", k).set("name", c.walls[k].name));
+  summary.set("bodies", bodies);
+  summary.set("walls", walls);
+}
+
 /// summary.json: what made the run (version, commit, backend, threads, overrides), its
 /// resolution and time-step range, how it ended, its cost, the guard counters and profile errors.
 io::JsonObject run_summary(const Session& s, const RunEnd& end, std::optional<double> profile_error) {
@@ -165,6 +189,7 @@ io::JsonObject run_summary(const Session& s, const RunEnd& end, std::optional<do
   summary.set("dt_min", st.dt_min);
   summary.set("dt_max", st.dt_max);
   summary.set("overrides", s.overrides);
+  add_legend(summary, s.c);
   summary.set("wall_seconds", wall);
   summary.set("threads", static_cast<std::int64_t>(omp_get_max_threads()));
   summary.set("particle_steps_per_second", wall > 0 ? st.particle_steps / wall : 0.0);

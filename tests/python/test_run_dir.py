@@ -27,6 +27,21 @@ def test_run_directory_is_the_clis(settling_run):
     assert settling_run.case["name"] == "settling"
 
 
+def test_summary_says_what_made_the_run(settling_run):
+    summary = settling_run.summary
+    version = subprocess.run([BINARY, "--version"], capture_output=True, text=True).stdout.strip()
+    assert version == "particula %s (commit %s)" % (summary["version"], summary["commit"])
+    assert version in settling_run.log  # log.txt names the build too
+    assert summary["exit_code"] == 0 and "failure" not in summary
+    assert summary["d0"] == 2.5e-4 and summary["h"] == pytest.approx(2.6 * 2.5e-4, rel=1e-15)
+    assert 0 < summary["dt_min"] <= summary["dt_max"] <= summary["end_time"]
+    assert summary["overrides"] == [] and summary["backend"] == "cpu" and summary["threads"] >= 1
+    # the legend of the body and wall numbers
+    assert summary["bodies"] == [{"index": 0, "name": "cylinder", "shape": "circle", "motion": "free"}]
+    assert [w["name"] for w in summary["walls"]] == ["bottom", "right", "top", "left"]
+    assert [w["index"] for w in summary["walls"]] == [0, 1, 2, 3]
+
+
 def test_every_snapshot_matches_summary_and_bodies(settling_run):
     run = settling_run
     summary = run.summary
@@ -157,5 +172,12 @@ def test_numerical_failure_of_a_run(particula, tmp_path):
     result = particula.run_case(case("hydrostatic"), out, sets, plots=False, overwrite=True, check=False)
     assert result.exit_code == 3 and "numerical failure" in result.message
     run = result.read()
-    assert run.summary["status"] == "failed"
+    assert run.summary["status"] == "failed" and run.summary["exit_code"] == 3
+    failure = run.summary["failure"]  # structured: reason, time, step, particle, position
+    assert failure["time"] == run.summary["end_time"] and failure["step"] == run.summary["steps"]
+    assert isinstance(failure["particle"], int) and len(failure["position"]) == 2
+    assert failure["reason"] in result.message
+    from particula.overrides import override_list
+    assert run.summary["overrides"] == override_list(sets) == ["resolution.d0=0.005", "fluid.c=0.05",
+                                                               "time.dt_max=0.001"]
     assert run.snapshots.times[-1] == run.summary["end_time"]  # the final snapshot is written
