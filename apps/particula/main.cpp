@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
   generate->add_option("--seed", generate_seed, "Seed of the random case (the same seed gives the same file)")
       ->required();
   generate->add_option("--out", generate_out, "Case file to write (default: standard output)");
-  generate->footer(footer("  particula generate --seed 7 --out runs/random7.toml && particula run runs/random7.toml"));
+  generate->footer(footer("  particula generate --seed 7 --out seed7.toml && particula run seed7.toml"));
 
   bool schema_json = false;
   auto* schema = app.add_subcommand(

@@ -1,13 +1,8 @@
-// The build's version and commit, set by CMake on this file only (PARTICULA_VERSION,
-// PARTICULA_GIT_COMMIT; see CMakeLists.txt), so a new commit recompiles nothing else.
+// The build's version and commit, from the header CMake generates at configure time
+// (src/run/build_version.hpp.in), included here only, so a new commit recompiles nothing else.
 #include "particula/run/version.hpp"
 
-#ifndef PARTICULA_VERSION
-#define PARTICULA_VERSION "unknown"
-#endif
-#ifndef PARTICULA_GIT_COMMIT
-#define PARTICULA_GIT_COMMIT "unknown"
-#endif
+#include "particula_build_version.hpp"
 
 namespace particula {
 
