@@ -4,6 +4,7 @@
     run.summary["end_time"]              # summary.json as a dict
     run.case["resolution"]["d0"]         # case.toml as a dict
     run.bodies["vy"]                     # bodies.csv: a Table, one float64 array per column
+    run.bodies.units["fx"]               # "N/m", from the file's "# units:" line
     run.body(0)["vy"]                    # the rows of body 0
     run.walls, run.probes["profile"]     # walls.csv, probe_<name>.csv
     run.probe("profile")["vx"]           # a probe as (times, points) arrays
