@@ -17,6 +17,7 @@ using namespace particula;
 namespace {
 
 const std::filesystem::path kDocs = std::filesystem::path(PARTICULA_SOURCE_DIR) / "docs" / "case-files.md";
+const std::filesystem::path kJsonSchema = std::filesystem::path(PARTICULA_SOURCE_DIR) / "docs" / "case.schema.json";
 
 bool numeric(ValueType t) {
   return t == ValueType::Real || t == ValueType::Int || t == ValueType::Vec2 || t == ValueType::Vec2List ||
@@ -163,6 +164,33 @@ TEST(CaseDocs, ReferenceIsUpToDate) {
   EXPECT_EQ(read_file(kDocs), generated)
       << kDocs
       << " differs from case_reference_markdown(); run test_case_schema with PARTICULA_UPDATE_DOCS=1";
+}
+
+// docs/case.schema.json (the file .taplo.toml points editors to) is `particula schema --json`;
+// tests/python/test_schema.py checks it as JSON Schema against every shipped case file.
+TEST(CaseDocs, JsonSchemaIsUpToDate) {
+  const std::string generated = case_json_schema();
+  if (std::getenv("PARTICULA_UPDATE_DOCS")) {
+    std::ofstream(kJsonSchema, std::ios::binary) << generated;
+    GTEST_SKIP() << "rewrote " << kJsonSchema;
+  }
+  EXPECT_EQ(read_file(kJsonSchema), generated)
+      << kJsonSchema << " differs from case_json_schema(); run test_case_schema with PARTICULA_UPDATE_DOCS=1";
+}
+
+TEST(CaseDocs, JsonSchemaNamesEveryKeyWithItsUnit) {
+  const std::string json = case_json_schema();
+  for (const KeySpec& s : case_schema()) {
+    EXPECT_NE(json.find("\"" + s.leaf() + "\": {"), std::string::npos) << s.key;
+    if (!s.unit.empty() && s.unit != "-") {
+      EXPECT_NE(json.find("\"x-unit\": \"" + s.unit + "\""), std::string::npos) << s.key;
+    }
+  }
+  for (const SectionSpec& sec : case_sections()) {
+    if (!sec.name.empty()) {
+      EXPECT_NE(json.find("\"" + sec.name + "\": {"), std::string::npos) << sec.name;
+    }
+  }
 }
 
 TEST(CaseDocs, EveryKeyIsDocumented) {

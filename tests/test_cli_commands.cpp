@@ -1,5 +1,5 @@
-// The subcommands added to the command line: --help of each, `plot`, `validate`, `info
-// --no-timing` and the guard against absurd particle counts.
+// The subcommands added to the command line: --help of each (with examples), --version, `plot`,
+// `validate`, `schema`, `info --no-timing` and the guard against absurd particle counts.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -7,7 +7,9 @@
 
 #include "cli_process.hpp"
 #include "particula/io/atomic_file.hpp"
+#include "particula/case/schema.hpp"
 #include "particula/run/validate.hpp"
+#include "particula/run/version.hpp"
 
 namespace fs = std::filesystem;
 using cli_test::fresh_dir;
@@ -24,16 +26,47 @@ bool has_matplotlib() {
 }  // namespace
 
 TEST(CliCommands, EverySubcommandHasHelp) {
-  for (const char* sub : {"run", "resume", "info", "validate", "generate", "plot"}) {
+  for (const char* sub : {"run", "resume", "info", "validate", "generate", "plot", "schema"}) {
     const auto r = cli({sub, "--help"});
     EXPECT_EQ(r.code, 0) << sub << ": " << r.output;
     EXPECT_NE(r.output.find("Usage"), std::string::npos) << sub << ": " << r.output;
+    // an example of the command itself, and where case files are documented
+    EXPECT_NE(r.output.find("Examples:\n  particula " + std::string(sub)), std::string::npos) << sub << ": " << r.output;
+    EXPECT_NE(r.output.find("docs/case-files.md"), std::string::npos) << sub << ": " << r.output;
   }
   const auto r = cli({"--help"});
   EXPECT_EQ(r.code, 0);
-  for (const char* sub : {"run", "resume", "info", "validate", "generate", "plot"})
+  for (const char* sub : {"run", "resume", "info", "validate", "generate", "plot", "schema"})
     EXPECT_NE(r.output.find(sub), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("docs/case-files.md"), std::string::npos) << r.output;
   EXPECT_EQ(cli({"frobnicate"}).code, 2);
+}
+
+TEST(CliCommands, VersionNamesTheVersionAndCommit) {
+  const auto r = cli({"--version"});
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output, particula::version_line() + "\n");
+  EXPECT_EQ(r.output.rfind("particula " + particula::version() + " (commit ", 0), 0u) << r.output;
+  EXPECT_FALSE(particula::git_commit().empty());
+}
+
+TEST(CliCommands, SchemaPrintsTheReferenceOrTheJsonSchema) {
+  const auto md = cli({"schema"});
+  EXPECT_EQ(md.code, 0);
+  EXPECT_EQ(md.output, particula::case_reference_markdown());
+  const auto json = cli({"schema", "--json"});
+  EXPECT_EQ(json.code, 0);
+  EXPECT_EQ(json.output, particula::case_json_schema());
+}
+
+TEST(CliCommands, UnknownValidationCaseListsTheNamesAndCreatesNothing) {
+  const fs::path dir = fresh_dir("validate_unknown");
+  const auto bad = cli({"validate", "--case", "couete", "--out", (dir / "out").string()});
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--case couete: no validation case of that name"), std::string::npos) << bad.output;
+  for (const auto& e : particula::validation_entries()) EXPECT_NE(bad.output.find(e.name), std::string::npos) << e.name;
+  EXPECT_NE(bad.output.find("analytic: couette"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(dir / "out")) << "nothing created";
 }
 
 TEST(CliCommands, AbsurdResolutionIsRefusedBeforeAnyAllocation) {

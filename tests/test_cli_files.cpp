@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cli_process.hpp"
+#include "particula/io/json.hpp"
 #include "particula/run/run_dir.hpp"
 
 namespace fs = std::filesystem;
@@ -145,6 +146,10 @@ TEST(CliFiles, WriteFailureIsExitFourLoggedAndTheRunResumes) {
   EXPECT_NE(r.output.find("particula resume"), std::string::npos) << r.output;
   const std::string log = read_text(dir / "cut" / "log.txt");
   EXPECT_NE(log.find("error: I/O failure: cannot write"), std::string::npos) << log;
+  const std::string summary = read_text(dir / "cut" / "summary.json");  // small: within the limit
+  EXPECT_NE(summary.find("\"status\": \"io_failure\""), std::string::npos) << summary;
+  EXPECT_EQ(particula::io::json_number_field(summary, "exit_code"), 4) << summary;
+  EXPECT_NE(summary.find("\"error\": \"I/O failure: cannot write"), std::string::npos) << summary;
   const auto resumed = cli({"resume", (dir / "cut").string(), "--quiet", "--no-plots", "--threads", "1"});
   ASSERT_EQ(resumed.code, 0) << resumed.output;
   for (const char* f : {"walls.csv", "probe_profile.csv"})
@@ -212,7 +217,9 @@ TEST(CliFiles, SigtermDuringALongOutputEndsWithinASecondAndTheResumedRunWritesIt
   ASSERT_EQ(cut.code, 130) << cut.output;
   EXPECT_LT(waited, 1.0) << "SIGTERM honoured within a second";
   EXPECT_TRUE(fs::exists(dir / "cut" / "checkpoint" / "state.bin"));
-  EXPECT_EQ(read_text(probe), "time,x,y,vx,vy,p,vx_exact\n") << "no partial rows";
+  EXPECT_EQ(read_text(probe),
+            "time,x,y,vx,vy,p,vx_exact\n# units: time [s], x [m], y [m], vx [m/s], vy [m/s], p [Pa], vx_exact [m/s]\n")
+      << "no partial rows";
   std::printf("SIGTERM during a long probe output: exit 130 after %.3f s\n", waited);
 
   const auto resumed = cli({"resume", (dir / "cut").string(), "--quiet", "--no-plots", "--threads", "1"});

@@ -185,3 +185,47 @@ TEST_F(CsvTest, RowsAreWrittenTogetherOrNotAtAll) {
   EXPECT_EQ(read_file(p), "time,body,x\n0,0,1.5\n0,1,2.5\n");
   EXPECT_THROW(w.rows(std::vector<double>{1.0, 2.0}), std::invalid_argument);
 }
+
+TEST_F(CsvTest, UnitsLineFollowsTheHeaderAndIsReadBack) {
+  const fs::path p = dir_ / "u.csv";
+  {
+    CsvWriter w(p, kHeader, {"s", "-", "m"});
+    w.row({0.35, 0, 1.5});
+  }
+  EXPECT_EQ(read_file(p), "time,body,x\n# units: time [s], body [-], x [m]\n0.35,0,1.5\n");
+  const CsvTable t = read_csv(p);
+  EXPECT_EQ(t.units, (std::vector<std::string>{"s", "-", "m"}));
+  EXPECT_EQ(t.size(), 1u);
+  // a units line that does not name the columns in order is an ordinary comment
+  write_file_atomic(p, "time,body,x\n# units: body [-], time [s], x [m]\n0,0,0\n");
+  EXPECT_TRUE(read_csv(p).units.empty());
+  EXPECT_THROW(CsvWriter(dir_ / "v.csv", kHeader, {"s", "m"}), std::invalid_argument);
+  EXPECT_THROW(CsvWriter(dir_ / "w.csv", kHeader, {"s", "", "m"}), std::invalid_argument);
+  EXPECT_THROW(CsvWriter(dir_ / "x.csv", kHeader, {"s", "[-]", "m"}), std::invalid_argument);
+}
+
+TEST_F(CsvTest, AppendKeepsTheUnitsLineAndWritesItToANewFile) {
+  const fs::path p = dir_ / "bodies.csv";
+  {
+    CsvWriter w(p, kHeader, {"s", "-", "m"});
+    w.row({0.0, 0, 1});
+    w.row({0.1, 0, 2});
+  }
+  {
+    auto w = CsvWriter::append(p, kHeader, 0.05, {"s", "-", "m"});
+    w.row({0.1, 0, 3});
+  }
+  EXPECT_EQ(read_file(p), "time,body,x\n# units: time [s], body [-], x [m]\n0,0,1\n0.1,0,3\n");
+  const fs::path q = dir_ / "new.csv";
+  { auto w = CsvWriter::append(q, kHeader, 1.0, {"s", "-", "m"}); }
+  EXPECT_EQ(read_file(q), "time,body,x\n# units: time [s], body [-], x [m]\n");
+}
+
+TEST_F(CsvTest, NumbersAreWrittenInTheirShortestExactForm) {
+  const fs::path p = dir_ / "s.csv";
+  {
+    CsvWriter w(p, {"a", "b", "c"});
+    w.row({0.35, 7 * 0.05, 1e-5});
+  }
+  EXPECT_EQ(read_file(p), "a,b,c\n0.35,0.35000000000000003,1e-05\n");
+}

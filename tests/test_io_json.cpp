@@ -79,3 +79,37 @@ TEST(Json, NumberFieldFindsKeysNotValues) {
   EXPECT_THROW(json_number_field(text, "missing"), std::runtime_error);
   EXPECT_THROW(json_number_field(text, "name"), std::runtime_error);
 }
+
+TEST(Json, ListsOfStringsObjectsAndRawValues) {
+  JsonObject a, b;
+  a.set("name", "cylinder");
+  b.set("name", "wall \"0\"");
+  JsonObject j;
+  j.set("required", std::vector<std::string>{"d0", "c"})
+      .set("default", JsonRaw{"[false, true]"})
+      .set("bodies", std::vector<JsonObject>{a, b})
+      .set("none", std::vector<JsonObject>{});
+  EXPECT_EQ(j.dump(),
+            "{\n"
+            "  \"required\": [\"d0\", \"c\"],\n"
+            "  \"default\": [false, true],\n"
+            "  \"bodies\": [\n"
+            "    {\n"
+            "      \"name\": \"cylinder\"\n"
+            "    },\n"
+            "    {\n"
+            "      \"name\": \"wall \\\"0\\\"\"\n"
+            "    }\n"
+            "  ],\n"
+            "  \"none\": []\n"
+            "}");
+  EXPECT_EQ(j.dump(0), R"({"required": ["d0", "c"],"default": [false, true],"bodies": [{"name": "cylinder"},)"
+                       R"({"name": "wall \"0\""}],"none": []})");
+}
+
+TEST(Json, NumbersAreShortestAndExact) {
+  EXPECT_EQ(json_number(0.35), "0.35");
+  EXPECT_EQ(json_number(7 * 0.05), "0.35000000000000003");
+  EXPECT_EQ(json_number(2.0), "2");
+  EXPECT_EQ(json_number(std::numeric_limits<double>::quiet_NaN()), "null");
+}

@@ -5,16 +5,33 @@
 #include <cstdio>
 #include <exception>
 
+#include "particula/case/schema.hpp"
 #include "particula/io/error.hpp"
 #include "particula/run/info.hpp"
 #include "particula/run/plots.hpp"
 #include "particula/run/random_case.hpp"
 #include "particula/run/runner.hpp"
 #include "particula/run/validate.hpp"
+#include "particula/run/version.hpp"
+
+namespace {
+
+/// The --help footer of a command: examples, then where case files are documented.
+std::string footer(const std::string& examples) {
+  return "Examples:\n" + examples +
+         "\nCase files: every key, its unit, default and range in docs/case-files.md; the README lists the "
+         "outputs and exit codes.";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"particula: rigid bodies in viscous flow, weakly compressible SPH (Hashemi, Fatehi & Manzari 2012)"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", particula::version_line(), "Print the version and git commit, then exit");
+  app.footer(footer("  particula run cases/couette.toml --out runs/couette --set resolution.d0=2.5e-5\n"
+                    "  particula info cases/falling_cylinder.toml\n"
+                    "  particula COMMAND --help"));
 
   particula::RunOptions run_opt;
   std::string run_case;
@@ -29,6 +46,9 @@ int main(int argc, char** argv) {
   run->add_flag("--quiet", run_opt.quiet, "No progress line");
   run->add_flag("--no-plots", no_plots, "Do not draw plots at the end of the run");
   run->add_flag("--overwrite", run_opt.overwrite, "Replace an existing run directory");
+  run->footer(footer("  particula run cases/couette.toml\n"
+                     "  particula run cases/falling_cylinder.toml --out runs/demo --set resolution.d0=2.5e-4 "
+                     "--set time.end=0.5"));
 
   particula::ResumeOptions resume_opt;
   bool resume_no_plots = false;
@@ -43,6 +63,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"cpu", "cuda"}));
   resume->add_flag("--quiet", resume_opt.quiet, "No progress line");
   resume->add_flag("--no-plots", resume_no_plots, "Do not draw plots at the end of the run");
+  resume->footer(footer("  particula resume runs/demo                      (after Ctrl-C or an I/O failure)\n"
+                        "  particula resume runs/demo --set time.end=1     (continue a finished run)"));
 
   std::string info_case;
   std::vector<std::string> info_overrides;
@@ -51,6 +73,7 @@ int main(int argc, char** argv) {
   info->add_option("case", info_case, "Case file (TOML)")->required();
   info->add_option("--set", info_overrides, "Override a case key (repeatable)");
   info->add_flag("--no-timing", info_no_timing, "Do not time a few steps (no wall-time estimate)");
+  info->footer(footer("  particula info cases/dkt.toml --set resolution.d0=2e-4"));
 
   particula::ValidateOptions validate_opt;
   auto* validate = app.add_subcommand(
@@ -73,6 +96,10 @@ int main(int argc, char** argv) {
                        "paper, the robustness cases only when asked for)")
       ->check(CLI::IsMember({"analytic", "paper", "robustness"}));
   validate->add_flag("--quiet", validate_opt.quiet, "Only the final line");
+  validate->footer(footer("  particula validate --quick --out runs/validate\n"
+                          "  particula validate --case couette --case falling_cylinder --quick\n"
+                          "  particula validate --group robustness --quick\n"
+                          "An unknown --case name lists the valid names."));
 
   std::uint64_t generate_seed = 0;
   std::string generate_out;
@@ -81,10 +108,22 @@ int main(int argc, char** argv) {
   generate->add_option("--seed", generate_seed, "Seed of the random case (the same seed gives the same file)")
       ->required();
   generate->add_option("--out", generate_out, "Case file to write (default: standard output)");
+  generate->footer(footer("  particula generate --seed 7 --out seed7.toml && particula run seed7.toml"));
+
+  bool schema_json = false;
+  auto* schema = app.add_subcommand(
+      "schema", "Print the case-file schema: the key reference (markdown, = docs/case-files.md) or, with --json, a "
+                "JSON Schema for editors");
+  schema->add_flag("--json", schema_json,
+                   "A JSON Schema (draft-07) of case files: types, units, defaults, ranges, choices, required keys");
+  schema->footer(footer("  particula schema --json > particula-case.schema.json\n"
+                        "  (Even Better TOML / taplo: .taplo.toml associates cases/**/*.toml with "
+                        "docs/case.schema.json)"));
 
   std::string plot_dir;
   auto* plot = app.add_subcommand("plot", "(Re)draw the plots of a run directory into DIR/plots (tools/plot_run.py)");
   plot->add_option("dir", plot_dir, "Run directory")->required();
+  plot->footer(footer("  particula plot runs/demo"));
 
   try {
     app.parse(argc, argv);
@@ -107,6 +146,11 @@ int main(int argc, char** argv) {
     }
     if (*generate) return particula::generate_command(generate_seed, generate_out);
     if (*plot) return particula::plot_command(plot_dir);
+    if (*schema) {
+      const std::string text = schema_json ? particula::case_json_schema() : particula::case_reference_markdown();
+      std::fwrite(text.data(), 1, text.size(), stdout);
+      return std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : particula::kExitIoFailure;
+    }
   } catch (const particula::io::WriteError& e) {
     std::fprintf(stderr, "error: I/O failure: %s\n", e.what());
     return particula::kExitIoFailure;

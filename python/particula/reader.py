@@ -4,6 +4,7 @@
     run.summary["end_time"]              # summary.json as a dict
     run.case["resolution"]["d0"]         # case.toml as a dict
     run.bodies["vy"]                     # bodies.csv: a Table, one float64 array per column
+    run.bodies.units["fx"]               # "N/m", from the file's "# units:" line
     run.body(0)["vy"]                    # the rows of body 0
     run.walls, run.probes["profile"]     # walls.csv, probe_<name>.csv
     run.probe("profile")["vx"]           # a probe as (times, points) arrays
@@ -59,14 +60,27 @@ def _is_number(text):
         return False
 
 
+def _unit(entry, column):
+    """The unit of one entry of a units comment: "x [m]" (particula's form, naming the column)
+    or a bare "m"."""
+    entry = entry.strip()
+    if entry.endswith("]") and " [" in entry:
+        name, unit = entry[:-1].split(" [", 1)
+        return unit if name.strip() == column else None
+    return entry
+
+
 def _comment_units(comments, header):
-    """Units from a header comment such as "# units: s,1,m,..." (one per column), if any."""
+    """Units from a comment line such as "# units: time [s], x [m], ..." (particula writes it
+    after the header) or "# units: s,m,..." (one per column), if any."""
     for c in comments:
         body = c.lstrip("#").strip()
         if body.lower().startswith("units:"):
-            units = [u.strip() for u in body[len("units:"):].split(",")]
-            if len(units) == len(header):
-                return dict(zip(header, units))
+            entries = body[len("units:"):].split(",")
+            if len(entries) == len(header):
+                units = [_unit(e, h) for e, h in zip(entries, header)]
+                if None not in units:
+                    return dict(zip(header, units))
     return {}
 
 
@@ -118,10 +132,12 @@ def _decode_array(el, num, header_dtype):
 
 
 class Snapshot(dict):
-    """The particles of one .vtp file: points (n, 2) and {array name: NumPy array}; a
+    """The particles of one .vtp file: points (n, 2) in m and {array name: NumPy array}; a
     3-component array (a 2D vector) is (n, 2). Arrays particula writes: pressure (Pa),
-    velocity (m/s), density (kg/m^3), kind (0 fluid, 1 wall or body surface, 2 dummy), body (the
-    rigid group: walls first in case order, then bodies; -1 for fluid), id."""
+    velocity (m/s), density (kg/m^3), kind (0 fluid, 1 wall or body surface, 2 dummy particle of
+    the dummy-particle boundary), body (the body's index in the case, as in bodies.csv; -1 for
+    particles of no body), wall (the wall's index in the case, as in walls.csv; -1 otherwise), id
+    (a particle's stable identity)."""
 
     def __init__(self, points, arrays, time=None, path=None):
         super().__init__(arrays)

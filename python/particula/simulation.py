@@ -162,8 +162,9 @@ class Simulation:
 
     @property
     def group(self):
-        """(n,) int32 rigid group of a boundary particle (walls first in case order, then
-        bodies in case order; the `body` array of the snapshots), -1 for fluid. View."""
+        """(n,) int32 rigid group of a boundary particle in the solver's numbering (walls first in
+        case order, then bodies in case order), -1 for fluid. View. The snapshots' `body` and
+        `wall` arrays are body_index and wall_index."""
         return self._sim.group
 
     @property
@@ -174,12 +175,13 @@ class Simulation:
     @property
     def body_index(self):
         """(n,) int32: the case index of the body ([[body]] order) a particle belongs to, -1 for
-        fluid and wall particles. Copy."""
+        fluid and wall particles (the snapshots' `body` array, bodies.csv's `body`). Copy."""
         return self._sim.body_index
 
     @property
     def wall_index(self):
-        """(n,) int32: the case index of the wall ([[wall]] order), -1 otherwise. Copy."""
+        """(n,) int32: the case index of the wall ([[wall]] order), -1 otherwise (the snapshots'
+        `wall` array, walls.csv's `wall`). Copy."""
         return self._sim.wall_index
 
     # ---- rigid bodies and walls (copies)

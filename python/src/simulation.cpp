@@ -6,7 +6,9 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
 #include <memory>
+#include <optional>
 #include <type_traits>
 #include <utility>
 
@@ -14,6 +16,7 @@
 #include "particula/case/load.hpp"
 #include "particula/run/checkpoint.hpp"
 #include "particula/run/limits.hpp"
+#include "particula/run/observers.hpp"
 #include "particula/run/runner.hpp"
 #include "particula/scene/scene.hpp"
 
@@ -100,12 +103,13 @@ void write_simulation_checkpoint(const Simulation& sim, const fs::path& file) {
       file, CheckpointView{toml, sim.case_hash, t, step, s.counters(), no_marks, s.particles(), s.groups()});
 }
 
-/// One step of at most max_dt (0: the stable step), without the GIL; a failure is raised.
-real step(Simulation& sim, real max_dt) {
+/// One step of at most max_dt (0: the stable step), or with `land_at` one that ends exactly at that
+/// time when it is limited by it; without the GIL; a failure is raised.
+real step(Simulation& sim, real max_dt, std::optional<real> land_at = std::nullopt) {
   std::optional<Failure> failure;
   {
     py::gil_scoped_release nogil;
-    failure = sim.solver->step(max_dt);
+    failure = land_at ? sim.solver->step_to(*land_at) : sim.solver->step(max_dt);
   }
   if (failure) throw StepFailure(*failure, sim.solver->time(), sim.solver->step_count());
   return sim.solver->last_dt();
@@ -117,7 +121,7 @@ std::int64_t run_to(Simulation& sim, real t) {
   const std::int64_t first = sim.solver->step_count();
   const real eps = 1e-9 * std::abs(t);
   while (sim.solver->time() < t - eps) {
-    step(sim, t - sim.solver->time());
+    step(sim, 0, t);
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
   }
   return sim.solver->step_count() - first;
@@ -151,20 +155,9 @@ py::array kind_view(const std::vector<Kind>& v, py::handle owner) {
 /// Per particle: the case index of the body (or wall, with `walls`) its boundary particle
 /// belongs to, -1 for fluid particles and for the other kind of group (a copy).
 py::array_t<std::int32_t> group_index(const Simulation& sim, bool walls) {
-  const Particles& P = sim.particles();
-  const auto& groups = sim.solver->groups();
-  std::vector<std::int32_t> index_of_group(groups.size(), -1);
-  std::int32_t wall = 0;
-  for (std::size_t g = 0; g < groups.size(); ++g) {
-    if (groups[g].is_wall && walls) index_of_group[g] = wall;
-    if (!groups[g].is_wall && !walls) index_of_group[g] = groups[g].body;
-    wall += groups[g].is_wall ? 1 : 0;
-  }
-  py::array_t<std::int32_t> out(static_cast<py::ssize_t>(P.size()));
-  auto o = out.mutable_unchecked<1>();
-  for (std::size_t i = 0; i < P.size(); ++i)
-    o(static_cast<py::ssize_t>(i)) =
-        P.group[i] >= 0 ? index_of_group[static_cast<std::size_t>(P.group[i])] : -1;
+  const std::vector<std::int32_t> index = particle_case_index(sim.particles(), sim.solver->groups(), walls);
+  py::array_t<std::int32_t> out(static_cast<py::ssize_t>(index.size()));
+  std::copy(index.begin(), index.end(), out.mutable_data());
   return out;
 }
 
@@ -257,7 +250,7 @@ void register_simulation(py::module_& m) {
       .def_static("from_checkpoint", &from_checkpoint, py::arg("file"), py::arg("overrides"),
                   py::arg("backend"), py::arg("threads"))
       .def("write_checkpoint", &write_simulation_checkpoint, py::arg("file"))
-      .def("step", &step, py::arg("max_dt") = 0.0)
+      .def("step", [](Simulation& sim, real max_dt) { return step(sim, max_dt); }, py::arg("max_dt") = 0.0)
       .def("run_to", &run_to, py::arg("t"))
       .def_property_readonly("time", [](const Simulation& s) { return s.solver->time(); })
       .def_property_readonly("step_count", [](const Simulation& s) { return s.solver->step_count(); })

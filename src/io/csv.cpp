@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "particula/io/atomic_file.hpp"
+#include "particula/io/number.hpp"
 
 namespace particula::io {
 namespace {
@@ -26,8 +27,26 @@ std::string join(const std::vector<std::string>& cells) {
 void check_columns(const std::vector<std::string>& columns) {
   if (columns.empty()) throw std::invalid_argument("CsvWriter: no columns");
   for (const auto& c : columns)
-    if (c.empty() || c.find_first_of(",\"\r\n") != std::string::npos)
+    if (c.empty() || c.find_first_of(",\"[]\r\n") != std::string::npos)
       throw std::invalid_argument(fmt::format("CsvWriter: invalid column name '{}'", c));
+}
+
+/// Units are optional (empty), else one per column, each non-empty and free of separators.
+void check_units(const std::vector<std::string>& columns, const std::vector<std::string>& units) {
+  if (units.empty()) return;
+  if (units.size() != columns.size())
+    throw std::invalid_argument(
+        fmt::format("CsvWriter: {} units for {} columns", units.size(), columns.size()));
+  for (const auto& u : units)
+    if (u.empty() || u.find_first_of(",\"[]\r\n") != std::string::npos)
+      throw std::invalid_argument(fmt::format("CsvWriter: invalid unit '{}'", u));
+}
+
+/// The header text written to a new file: the column names and, with units, the units line.
+std::string header_text(const std::vector<std::string>& columns, const std::vector<std::string>& units) {
+  std::string text = join(columns) + "\n";
+  if (!units.empty()) text += units_comment(columns, units) + "\n";
+  return text;
 }
 
 std::string_view trim(std::string_view s) {
@@ -56,6 +75,21 @@ bool parse_number(std::string_view s, double& v) {
 
 bool skipped(std::string_view line) { return trim(line).empty() || line.front() == '#'; }
 
+/// The units of a "# units: name [unit], ..." comment when it names exactly `header`, else empty.
+std::vector<std::string> parse_units_comment(std::string_view line, const std::vector<std::string>& header) {
+  constexpr std::string_view kPrefix = "# units:";
+  if (!line.starts_with(kPrefix)) return {};
+  const auto cells = split(line.substr(kPrefix.size()));
+  if (cells.size() != header.size()) return {};
+  std::vector<std::string> units;
+  for (std::size_t j = 0; j < cells.size(); ++j) {
+    const std::size_t open = cells[j].find(" [");
+    if (open == std::string_view::npos || cells[j].back() != ']' || cells[j].substr(0, open) != header[j]) return {};
+    units.emplace_back(cells[j].substr(open + 2, cells[j].size() - open - 3));
+  }
+  return units;
+}
+
 /// The length to keep of an existing CSV file being appended to, after checking its header:
 /// complete lines only, and no row after `drop_after`. npos when the file holds no header line.
 std::size_t kept_length(const std::filesystem::path& path, std::string_view text, const std::string& header,
@@ -81,32 +115,43 @@ std::size_t kept_length(const std::filesystem::path& path, std::string_view text
 
 }  // namespace
 
-CsvWriter::CsvWriter(std::filesystem::path path, std::vector<std::string> columns, const char* mode)
-    : path_(std::move(path)), columns_(std::move(columns)) {
+std::string units_comment(const std::vector<std::string>& columns, const std::vector<std::string>& units) {
+  std::string text = "# units:";
+  for (std::size_t j = 0; j < columns.size() && j < units.size(); ++j)
+    text += fmt::format("{} {} [{}]", j ? "," : "", columns[j], units[j]);
+  return text;
+}
+
+CsvWriter::CsvWriter(std::filesystem::path path, std::vector<std::string> columns, std::vector<std::string> units,
+                     const char* mode)
+    : path_(std::move(path)), columns_(std::move(columns)), units_(std::move(units)) {
   check_columns(columns_);
+  check_units(columns_, units_);
   file_.reset(std::fopen(path_.c_str(), mode));
   if (!file_)
     throw WriteError(fmt::format("cannot open '{}' for writing: {}", path_.string(), std::strerror(errno)));
 }
 
-CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns)
-    : CsvWriter(path, std::move(columns), "wb") {
-  put(join(columns_) + "\n");
+CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns,
+                     std::vector<std::string> units)
+    : CsvWriter(path, std::move(columns), std::move(units), "wb") {
+  put(header_text(columns_, units_));
 }
 
 CsvWriter CsvWriter::append(const std::filesystem::path& path, std::vector<std::string> expected_header,
-                            double drop_after) {
+                            double drop_after, std::vector<std::string> units) {
   check_columns(expected_header);
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return CsvWriter(path, std::move(expected_header));
+  if (!std::filesystem::exists(path, ec)) return CsvWriter(path, std::move(expected_header), std::move(units));
   const std::string text = read_file(path);
   const std::size_t keep = kept_length(path, text, join(expected_header), drop_after);
-  if (keep == std::string::npos) return CsvWriter(path, std::move(expected_header));  // no header yet
+  if (keep == std::string::npos)  // no header yet
+    return CsvWriter(path, std::move(expected_header), std::move(units));
   if (keep < text.size()) {
     std::filesystem::resize_file(path, keep, ec);
     if (ec) throw WriteError(fmt::format("cannot truncate '{}': {}", path.string(), ec.message()));
   }
-  return CsvWriter(path, std::move(expected_header), "ab");
+  return CsvWriter(path, std::move(expected_header), std::move(units), "ab");
 }
 
 void CsvWriter::row(std::span<const double> values) {
@@ -122,13 +167,17 @@ void CsvWriter::rows(std::span<const double> values, const StopCheck& stop) {
     throw std::invalid_argument(fmt::format("CsvWriter '{}': {} values are not whole rows of {} columns",
                                             path_.string(), values.size(), nc));
   constexpr std::size_t kRowsPerPoll = 4096;
-  fmt::memory_buffer text;
+  std::string text;
+  text.reserve(values.size() * 12);
   for (std::size_t r = 0; r * nc < values.size(); ++r) {
     if (stop && r % kRowsPerPoll == 0 && stop()) throw Cancelled();
-    for (std::size_t i = 0; i < nc; ++i) fmt::format_to(std::back_inserter(text), "{}{}", i ? "," : "", values[r * nc + i]);
+    for (std::size_t i = 0; i < nc; ++i) {
+      if (i) text.push_back(',');
+      append_shortest(text, values[r * nc + i]);
+    }
     text.push_back('\n');
   }
-  put(std::string_view(text.data(), text.size()));
+  put(text);
 }
 
 void CsvWriter::put(std::string_view text) {
@@ -165,7 +214,10 @@ CsvTable read_csv(const std::filesystem::path& path) {
     if (nl == std::string::npos) nl = text.size();
     const std::string_view line = std::string_view(text).substr(start, nl - start);
     start = nl + 1;
-    if (skipped(line)) continue;
+    if (skipped(line)) {
+      if (have_header && t.units.empty()) t.units = parse_units_comment(line, t.header);
+      continue;
+    }
     const auto cells = split(line);
     if (!have_header) {
       for (const auto c : cells) t.header.emplace_back(c);

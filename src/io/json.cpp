@@ -8,11 +8,10 @@
 #include <limits>
 #include <stdexcept>
 
+#include "particula/io/number.hpp"
+
 namespace particula::io {
 namespace {
-
-/// A double as JSON: shortest round-trip text, null when not finite.
-std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "null"; }
 
 /// Appends a newline plus indentation for `depth` levels (nothing on one line).
 void line_break(std::string& out, int indent, int depth) {
@@ -22,6 +21,14 @@ void line_break(std::string& out, int indent, int depth) {
 }
 
 }  // namespace
+
+std::string json_number(double v) { return std::isfinite(v) ? shortest(v) : "null"; }
+
+JsonObject& JsonObject::set(std::string_view key, const std::vector<JsonObject>& value) {
+  ObjectList list;
+  for (const JsonObject& o : value) list.push_back(std::make_shared<const JsonObject>(o));
+  return put(key, std::move(list));
+}
 
 JsonObject& JsonObject::put(std::string_view key, Value value) {
   for (auto& [k, v] : entries_) {
@@ -66,6 +73,21 @@ void JsonObject::dump_to(std::string& out, int indent, int depth) const {
         if (j > 0) out += ", ";
         out += json_number((*a)[j]);
       }
+      out += ']';
+    } else if (const auto* l = std::get_if<std::vector<std::string>>(&v)) {
+      out += '[';
+      for (std::size_t j = 0; j < l->size(); ++j) out += (j > 0 ? ", " : "") + json_escape((*l)[j]);
+      out += ']';
+    } else if (const auto* r = std::get_if<JsonRaw>(&v)) {
+      out += r->text;
+    } else if (const auto* objects = std::get_if<ObjectList>(&v)) {
+      out += '[';
+      for (std::size_t j = 0; j < objects->size(); ++j) {
+        if (j > 0) out += ',';
+        line_break(out, indent, depth + 2);
+        (*objects)[j]->dump_to(out, indent, depth + 2);
+      }
+      if (!objects->empty()) line_break(out, indent, depth + 1);
       out += ']';
     } else {
       std::get<std::shared_ptr<const JsonObject>>(v)->dump_to(out, indent, depth + 1);

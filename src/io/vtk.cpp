@@ -13,6 +13,7 @@
 
 #include "particula/io/atomic_file.hpp"
 #include "particula/io/base64.hpp"
+#include "particula/io/number.hpp"
 #include "xml_scan.hpp"
 
 namespace particula::io {
@@ -301,7 +302,7 @@ void PvdIndex::write(const std::filesystem::path& path) const {
   for (const auto& e : entries_)
     out += fmt::format(R"(    <DataSet timestep="{}" group="" part="0" file="{}"/>)"
                        "\n",
-                       e.time, detail::xml_escape(e.file));
+                       shortest(e.time), detail::xml_escape(e.file));
   out += "  </Collection>\n</VTKFile>\n";
   write_file_atomic(path, out);
 }

@@ -18,20 +18,35 @@ SnapshotWriter::SnapshotWriter(std::filesystem::path run_dir, io::StopCheck stop
   if (ec) throw io::WriteError(fmt::format("cannot create '{}': {}", (dir_ / "particles").string(), ec.message()));
 }
 
+std::vector<std::int32_t> particle_case_index(const Particles& P, const std::vector<RigidGroup>& groups, bool walls) {
+  std::vector<std::int32_t> of_group(groups.size(), -1);
+  std::int32_t wall = 0;  // groups are walls first, then bodies, each in case order (scene.cpp)
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    if (groups[g].is_wall && walls) of_group[g] = wall;
+    if (!groups[g].is_wall && !walls) of_group[g] = groups[g].body;
+    wall += groups[g].is_wall ? 1 : 0;
+  }
+  std::vector<std::int32_t> index(P.size(), -1);
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (P.group[i] >= 0) index[i] = of_group.at(static_cast<std::size_t>(P.group[i]));
+  return index;
+}
+
 void SnapshotWriter::write(const Solver& s) {
   const Particles& P = s.particles();
   const std::size_t n = P.size();
   io::VtkArray pressure{"pressure", 1, std::vector<double>(P.p.begin(), P.p.end())};
   io::VtkArray density{"density", 1, std::vector<double>(P.rho.begin(), P.rho.end())};
-  io::VtkIntArray kind{"kind", 1, std::vector<std::int32_t>(n)}, body{"body", 1, std::vector<std::int32_t>(n)};
-  io::VtkIntArray id{"id", 1, std::vector<std::int32_t>(n)};
+  io::VtkIntArray kind{"kind", 1, std::vector<std::int32_t>(n)}, id{"id", 1, std::vector<std::int32_t>(n)};
+  io::VtkIntArray body{"body", 1, particle_case_index(P, s.groups(), false)};
+  io::VtkIntArray wall{"wall", 1, particle_case_index(P, s.groups(), true)};
   for (std::size_t i = 0; i < n; ++i) {
     kind.data[i] = static_cast<std::int32_t>(P.kind[i]);
-    body.data[i] = P.group[i];
     id.data[i] = static_cast<std::int32_t>(P.id[i]);
   }
   const std::string name = fmt::format("particles/step_{:08d}.vtp", s.step_count());
-  io::write_vtp(dir_ / name, P.x, {pressure, io::vector_array("velocity", P.v), density}, {kind, body, id}, stop_);
+  io::write_vtp(dir_ / name, P.x, {pressure, io::vector_array("velocity", P.v), density}, {kind, body, wall, id},
+                stop_);
   pvd_.add(s.time(), name);
   pvd_.write(dir_ / "particles.pvd");
 }
@@ -88,11 +103,18 @@ std::vector<std::string> probe_columns(const Case& c) {
   if (c.exact != ExactSolution::None) cols.push_back("vx_exact");
   return cols;
 }
+
+/// The units of probe_columns(c), in the same order.
+std::vector<std::string> probe_units(const Case& c) {
+  std::vector<std::string> units{"s", "m", "m", "m/s", "m/s", "Pa"};
+  if (c.exact != ExactSolution::None) units.push_back("m/s");
+  return units;
+}
 }  // namespace
 
 ProbeWriter::ProbeWriter(const std::filesystem::path& run_dir, const ProbeSpec& spec, const Case& c,
                          io::StopCheck stop)
-    : spec_(spec), case_(c), csv_(run_dir / ("probe_" + spec.name + ".csv"), probe_columns(c)), stop_(std::move(stop)) {
+    : spec_(spec), case_(c), csv_(run_dir / ("probe_" + spec.name + ".csv"), probe_columns(c), probe_units(c)), stop_(std::move(stop)) {
   for (int k = 0; k < spec.points; ++k) {
     const double s = spec.points > 1 ? static_cast<double>(k) / (spec.points - 1) : 0.0;
     points_.push_back(spec.from + s * (spec.to - spec.from));
@@ -159,10 +181,14 @@ namespace {
 const std::vector<std::string> kBodyColumns{"time", "body", "x",   "y",   "angle", "vx",  "vy",  "omega", "fx",
                                             "fy",   "torque", "fpx", "fpy", "fvx",   "fvy", "fcx", "fcy"};
 const std::vector<std::string> kWallColumns{"time", "wall", "fx", "fy", "fpx", "fpy", "fvx", "fvy"};
+// Units of the columns above. In 2D a force is per unit depth (N/m) and a torque N m/m.
+const std::vector<std::string> kBodyUnits{"s",   "-",   "m",   "m",   "rad", "m/s", "m/s", "rad/s", "N/m",
+                                          "N/m", "N m/m", "N/m", "N/m", "N/m", "N/m", "N/m", "N/m"};
+const std::vector<std::string> kWallUnits{"s", "-", "N/m", "N/m", "N/m", "N/m", "N/m", "N/m"};
 }  // namespace
 
 BodyHistoryWriter::BodyHistoryWriter(const std::filesystem::path& run_dir)
-    : csv_(run_dir / "bodies.csv", kBodyColumns), walls_(run_dir / "walls.csv", kWallColumns) {}
+    : csv_(run_dir / "bodies.csv", kBodyColumns, kBodyUnits), walls_(run_dir / "walls.csv", kWallColumns, kWallUnits) {}
 
 std::optional<Failure> BodyHistoryWriter::write(const Solver& s) {
   std::vector<std::vector<double>> bodies, walls;

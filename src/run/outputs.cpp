@@ -10,6 +10,7 @@
 
 #include "particula/io/atomic_file.hpp"
 #include "particula/io/csv.hpp"
+#include "particula/io/number.hpp"
 #include "particula/io/vtk.hpp"
 #include "particula/run/run_dir.hpp"
 
@@ -19,7 +20,9 @@ namespace fs = std::filesystem;
 
 real next_multiple(real t, real interval) {
   const real k = std::floor(t / interval + 1e-9) + 1;
-  return k * interval;
+  // k * interval to 15 digits: 7 * 0.05 is 0.35, not 0.35000000000000003, so the times written
+  // are the decimal values they stand for (the loop lands on them exactly: Solver::step_to).
+  return io::round_significant(k * interval, 15);
 }
 
 // ---- relays for resumed runs ------------------------------------------------------------------
@@ -35,19 +38,10 @@ real next_multiple(real t, real interval) {
 class CsvRelay {
  public:
   CsvRelay(fs::path scratch, const fs::path& target, real drop_after) : scratch_(std::move(scratch)) {
-    const std::string text = io::read_file(scratch_);
-    const std::size_t nl = text.find('\n');
-    if (nl == std::string::npos) throw io::IoError(fmt::format("'{}': no header line", scratch_.string()));
-    std::vector<std::string> header;
-    for (std::size_t start = 0;;) {
-      const std::size_t comma = text.find(',', start);
-      const std::size_t end = comma == std::string::npos || comma > nl ? nl : comma;
-      header.push_back(text.substr(start, end - start));
-      if (end == nl) break;
-      start = comma + 1;
-    }
-    offset_ = nl + 1;
-    target_.emplace(io::CsvWriter::append(target, header, drop_after));
+    // The observer has written its header (and units line) so far: the target gets the same.
+    const io::CsvTable head = io::read_csv(scratch_);
+    offset_ = io::read_file(scratch_).size();
+    target_.emplace(io::CsvWriter::append(target, head.header, drop_after, head.units));
   }
 
   /// Relays the complete rows written since the last call.
@@ -63,6 +57,7 @@ class CsvRelay {
     std::vector<double> row;
     std::size_t start = 0;
     for (std::size_t nl; (nl = text.find('\n', start)) != std::string::npos; start = nl + 1) {
+      if (text[start] == '#') continue;  // a comment line
       row.clear();
       for (std::size_t pos = start; pos <= nl;) {
         std::size_t end = text.find(',', pos);

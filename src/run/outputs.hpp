@@ -17,7 +17,8 @@
 
 namespace particula::run_detail {
 
-/// The first multiple of `interval` after t (the next output time after a write at t).
+/// The first multiple of `interval` after t (the next output time after a write at t), rounded
+/// to 15 significant digits (the decimal time it stands for).
 real next_multiple(real t, real interval);
 
 class CsvRelay;

@@ -2,17 +2,21 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <fmt/format.h>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "outputs.hpp"
 #include "particula/case/load.hpp"
+#include "particula/case/schema.hpp"
 #include "particula/io/atomic_file.hpp"
 #include "particula/io/json.hpp"
 #include "particula/io/log.hpp"
@@ -21,6 +25,7 @@
 #include "particula/run/observers.hpp"
 #include "particula/run/plots.hpp"
 #include "particula/run/run_dir.hpp"
+#include "particula/run/version.hpp"
 #include "particula/scene/scene.hpp"
 #include "particula/solver/device_backend.hpp"
 
@@ -77,6 +82,27 @@ struct Reporter {
   }
 };
 
+/// What the time loop measured: the summary's throughput and time-step range.
+struct RunStats {
+  std::chrono::steady_clock::time_point wall0 = std::chrono::steady_clock::now();
+  double particle_steps = 0, interactions = 0;
+  /// Range of the steps the stability limits chose (steps shortened to land on an output or end
+  /// time are left out: their size says nothing about the run); NaN before such a step.
+  real dt_min = std::numeric_limits<real>::quiet_NaN(), dt_max = std::numeric_limits<real>::quiet_NaN();
+
+  double wall_seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  }
+  /// Counts a step of `dt`, `capped` when it was shortened to land on a time.
+  void add_step(real dt, bool capped, std::size_t particles, std::size_t pairs) {
+    particle_steps += static_cast<double>(particles);
+    interactions += static_cast<double>(pairs);
+    if (capped) return;
+    dt_min = std::isnan(dt_min) ? dt : std::min(dt_min, dt);
+    dt_max = std::isnan(dt_max) ? dt : std::max(dt_max, dt);
+  }
+};
+
 /// What `run` and `resume` set up for the shared loop.
 struct Session {
   Case c;
@@ -88,7 +114,94 @@ struct Session {
   std::size_t n_fluid = 0;
   bool resumed = false;
   real t_start = 0;
+  std::vector<std::string> overrides;  // the --set list of this command
+  RunStats stats;
 };
+
+/// How a run ended, for summary.json: status, exit code and, for exit 3, the failure.
+struct RunEnd {
+  std::string status;  // completed, max_steps, interrupted, failed, io_failure
+  int exit_code = 0;
+  std::optional<Failure> failure;
+  std::string error;  // io_failure: the message
+};
+
+/// The failure of a run as structured fields: reason, time, step, particle (null when the
+/// failure is not a particle's) and position.
+io::JsonObject failure_json(const Failure& f, real t, std::int64_t step) {
+  io::JsonObject j;
+  j.set("reason", f.what);
+  j.set("time", t);
+  j.set("step", step);
+  if (f.particle_id >= 0)
+    j.set("particle", f.particle_id);
+  else
+    j.set("particle", io::JsonRaw{"null"});
+  j.set("position", std::vector<double>{f.position.x, f.position.y});
+  return j;
+}
+
+/// The text of choice key `key` ("body[].shape") of element `index` of the case.
+std::string choice_text(const Case& c, const char* key, std::size_t index) {
+  const KeySpec* spec = find_key(key);
+  const std::optional<Value> v = spec ? spec->bind.get(c, index) : std::nullopt;
+  const auto* text = v ? std::get_if<std::string>(&*v) : nullptr;
+  return text ? *text : "";
+}
+
+/// The legend of the body and wall numbers of bodies.csv, walls.csv and the snapshots' `body`
+/// and `wall` arrays: index (case order), name, and for bodies shape and motion.
+void add_legend(io::JsonObject& summary, const Case& c) {
+  std::vector<io::JsonObject> bodies, walls;
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    io::JsonObject b;
+    b.set("index", k).set("name", c.bodies[k].name);
+    b.set("shape", choice_text(c, "body[].shape", k)).set("motion", choice_text(c, "body[].motion", k));
+    bodies.push_back(std::move(b));
+  }
+  for (std::size_t k = 0; k < c.walls.size(); ++k) walls.push_back(io::JsonObject().set("index", k).set("name", c.walls[k].name));
+  summary.set("bodies", bodies);
+  summary.set("walls", walls);
+}
+
+/// summary.json: what made the run (version, commit, backend, threads, overrides), its
+/// resolution and time-step range, how it ended, its cost, the guard counters and profile errors.
+io::JsonObject run_summary(const Session& s, const RunEnd& end, std::optional<double> profile_error) {
+  const Solver& solver = *s.solver;
+  const RunStats& st = s.stats;
+  const double wall = st.wall_seconds();
+  io::JsonObject summary;
+  summary.set("case", s.c.name);
+  summary.set("status", end.status);
+  summary.set("exit_code", end.exit_code);
+  if (end.failure) summary.set("failure", failure_json(*end.failure, solver.time(), solver.step_count()));
+  if (!end.error.empty()) summary.set("error", end.error);
+  summary.set("version", version());
+  summary.set("commit", git_commit());
+  summary.set("particles", static_cast<std::int64_t>(solver.particle_count()));
+  summary.set("backend", std::string(solver.backend_name()));
+  summary.set("fluid_particles", static_cast<std::int64_t>(s.n_fluid));
+  summary.set("d0", s.c.d0);
+  summary.set("h", solver.params().h);
+  summary.set("steps", solver.step_count());
+  summary.set("end_time", solver.time());
+  if (s.resumed) summary.set("resumed_from", s.t_start);
+  summary.set("dt_min", st.dt_min);
+  summary.set("dt_max", st.dt_max);
+  summary.set("overrides", s.overrides);
+  add_legend(summary, s.c);
+  summary.set("wall_seconds", wall);
+  summary.set("threads", static_cast<std::int64_t>(omp_get_max_threads()));
+  summary.set("particle_steps_per_second", wall > 0 ? st.particle_steps / wall : 0.0);
+  summary.set("interactions_per_second", wall > 0 ? st.interactions / wall : 0.0);
+  io::JsonObject guards;
+  for (const auto& [name, count] : guard_events(solver.counters())) guards.set(name, count);
+  summary.set("guard_events", guards);
+  for (const auto& p : s.outputs->probes())
+    if (auto e = p->last_error()) summary.set("probe_error_" + p->spec().name, *e);
+  if (profile_error) summary.set("profile_error", *profile_error);
+  return summary;
+}
 
 void save_checkpoint(const fs::path& file, const Session& s) {
   const Solver& solver = *s.solver;
@@ -121,7 +234,8 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   io::ProgressOptions popt;
   popt.quiet = rep.quiet;
   io::ProgressLine progress(&rep.log, popt);
-  const auto wall0 = std::chrono::steady_clock::now();
+  RunStats& stats = s.stats;
+  stats = RunStats{};
   // A long output given up on a stop request (io::Cancelled) ends the run as interrupted; what
   // it would have written is written by the resumed run. Every output is checked before it is
   // written: a non-finite value ends the run as a numerical failure (exit 3), as a failed step does.
@@ -142,7 +256,6 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   real next_checkpoint = ci > 0 ? run_detail::next_multiple(solver.time(), ci) : std::numeric_limits<real>::infinity();
   std::string status = "completed";
   int exit_code = 0;
-  double particle_steps = 0, interactions = 0;
   const real eps = 1e-9 * c.t_end;
   while (!failure && solver.time() < c.t_end - eps) {
     if (c.max_steps > 0 && solver.step_count() >= c.max_steps) {
@@ -154,9 +267,9 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
       exit_code = 130;
       break;
     }
-    failure = solver.step(out.next_event(c.t_end) - solver.time());
-    particle_steps += static_cast<double>(solver.particle_count());
-    interactions += static_cast<double>(solver.last_pair_count());
+    const real target = out.next_event(c.t_end);
+    failure = solver.step_to(target);
+    stats.add_step(solver.last_dt(), solver.time() == target, solver.particle_count(), solver.last_pair_count());
     if (!failure) failure = write_outputs(false);
     if (failure) break;
     if (cancelled) continue;  // interrupted: the checkpoint is written below
@@ -164,9 +277,9 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
       save_checkpoint(checkpoint_file, s);
       next_checkpoint = run_detail::next_multiple(solver.time(), ci);
     }
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    const double wall = stats.wall_seconds();
     progress.update(solver.step_count(), solver.time(), c.t_end, solver.last_dt(),
-                    wall > 0 ? particle_steps / wall : 0);
+                    wall > 0 ? stats.particle_steps / wall : 0);
   }
   progress.finish();
   // The final state (after a stop request, long outputs are skipped at once).
@@ -189,33 +302,14 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   if (exit_code == 130)
     rep.tell(fmt::format("interrupted at t = {:.9g} s: checkpoint written; continue with: particula resume {}",
                          solver.time(), s.dir.string()));
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-
+  const double wall = stats.wall_seconds();
   const auto& cnt = solver.counters();
-  io::JsonObject summary;
-  summary.set("case", c.name);
-  summary.set("status", status);
-  summary.set("particles", static_cast<std::int64_t>(solver.particle_count()));
-  summary.set("backend", std::string(solver.backend_name()));
-  summary.set("fluid_particles", static_cast<std::int64_t>(s.n_fluid));
-  summary.set("steps", solver.step_count());
-  summary.set("end_time", solver.time());
-  if (s.resumed) summary.set("resumed_from", s.t_start);
-  summary.set("wall_seconds", wall);
-  summary.set("threads", static_cast<std::int64_t>(omp_get_max_threads()));
-  summary.set("particle_steps_per_second", wall > 0 ? particle_steps / wall : 0.0);
-  summary.set("interactions_per_second", wall > 0 ? interactions / wall : 0.0);
-  io::JsonObject guards;
-  for (const auto& [name, count] : guard_events(cnt)) guards.set(name, count);
-  summary.set("guard_events", guards);
-  for (const auto& p : out.probes())
-    if (auto e = p->last_error()) summary.set("probe_error_" + p->spec().name, *e);
   const auto particle_error = particle_profile_error(solver, c, stop_requested);
-  if (particle_error) summary.set("profile_error", *particle_error);
-  io::write_file_atomic(s.dir / "summary.json", summary.dump());
+  io::write_file_atomic(s.dir / "summary.json",
+                        run_summary(s, RunEnd{status, exit_code, failure, {}}, particle_error).dump());
 
   rep.say(fmt::format("{}: t = {:.6g} s after {} steps in {:.2f} s ({:.3g} particle-steps/s on {} threads)", status,
-                      solver.time(), solver.step_count(), wall, wall > 0 ? particle_steps / wall : 0.0,
+                      solver.time(), solver.step_count(), wall, wall > 0 ? stats.particle_steps / wall : 0.0,
                       omp_get_max_threads()));
   rep.say(fmt::format("guard events: singular B {}, singular Bhat at fluid particles {}, wall pressure kept {}, "
                       "extrapolated at corners {}, normal fallback {}, surface guard {} (closing gaps {}), "
@@ -283,6 +377,13 @@ int io_failure(const io::WriteError& e, Session& s, Reporter* rep) {
     return kExitIoFailure;
   }
   if (rep) rep->log.record("error: " + msg);
+  if (s.solver && s.outputs) {  // summary.json says how the run ended, if the disk takes it
+    try {
+      io::write_file_atomic(s.dir / "summary.json",
+                            run_summary(s, RunEnd{"io_failure", kExitIoFailure, std::nullopt, msg}, std::nullopt).dump());
+    } catch (const std::exception&) {
+    }
+  }
   std::error_code ec;
   if (!s.dir.empty() && fs::exists(checkpoint_path(s.dir), ec)) {
     const std::string hint = fmt::format("the last checkpoint ({}) is kept: once the cause is fixed, continue with: "
@@ -326,6 +427,7 @@ int run_command(const fs::path& case_file, const RunOptions& opt) {
                                              opt.overwrite, RunMarker{MarkedKind::Run, s.case_hash});
     s.dir = run_dir->path();
     s.run_dir = run_dir.get();
+    s.overrides = opt.overrides;
   } catch (const CaseError& e) {
     return bad_input(e);
   } catch (const RunDirRefused& e) {
@@ -343,8 +445,8 @@ int run_command(const fs::path& case_file, const RunOptions& opt) {
     io::write_file_atomic(s.dir / "case.toml", resolved_case_toml(s.c));
     Scene scene = build_scene(s.c);
     s.n_fluid = scene.particles.size() - scene.particles.n_boundary;
-    rep->say(fmt::format("particula: case '{}' from {}, {} particles ({} fluid, {} boundary), {} threads, backend {}",
-                         s.c.name, case_file.string(), scene.particles.size(), s.n_fluid, scene.particles.n_boundary,
+    rep->say(fmt::format("{}: case '{}' from {}, {} particles ({} fluid, {} boundary), {} threads, backend {}",
+                         version_line(), s.c.name, case_file.string(), scene.particles.size(), s.n_fluid, scene.particles.n_boundary,
                          omp_get_max_threads(), opt.backend));
     if (run_dir->replacing())
       rep->say(fmt::format("replacing the run directory {}: the old run is kept aside in {} until this run has "
@@ -430,6 +532,7 @@ int resume_command(const ResumeOptions& opt) {
     return 2;
   }
   s.dir = opt.run_dir;
+  s.overrides = opt.overrides;
   s.case_hash = k.case_hash;
   s.resumed = true;
   s.t_start = k.time;
@@ -447,9 +550,9 @@ int resume_command(const ResumeOptions& opt) {
     io::write_file_atomic(s.dir / "case.toml", resolved_case_toml(s.c));
     const Particles& P = k.particles;
     s.n_fluid = P.size() - P.n_boundary;
-    rep->say(fmt::format("particula: resuming case '{}' in {} at t = {:.9g} s, step {} ({} particles), to t = {:.6g} s, "
-                         "{} threads",
-                         s.c.name, s.dir.string(), k.time, k.step, P.size(), s.c.t_end, omp_get_max_threads()));
+    rep->say(fmt::format("{}: resuming case '{}' in {} at t = {:.9g} s, step {} ({} particles), to t = {:.6g} s, "
+                         "{} threads, backend {}",
+                         version_line(), s.c.name, s.dir.string(), k.time, k.step, P.size(), s.c.t_end, omp_get_max_threads(), opt.backend));
     const Domain domain{s.c.domain_min, s.c.domain_max, s.c.periodic_x, s.c.periodic_y};
     PhysicsParams prm = physics_params(s.c);
     prm.cuda = opt.backend == "cuda";

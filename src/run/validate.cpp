@@ -662,12 +662,27 @@ void print_result(const EntryResult& r) {
 
 }  // namespace
 
+namespace {
+/// The error for an unknown `--case NAME`: the valid names, by group.
+std::string unknown_case_message(const std::string& name, const std::vector<ValidationEntry>& entries) {
+  std::string text = fmt::format("--case {}: no validation case of that name; the cases are:", name);
+  for (const ValidationGroup g : {ValidationGroup::Analytic, ValidationGroup::Paper, ValidationGroup::Robustness}) {
+    std::string names;
+    for (const auto& e : entries)
+      if (e.group == g) names += (names.empty() ? "" : ", ") + e.name;
+    if (!names.empty()) text += fmt::format("\n  {}: {}", group_name(g), names);
+  }
+  return text;
+}
+}  // namespace
+
 int validate_command(const ValidateOptions& opt) {
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   std::vector<ValidationEntry> entries = validation_entries();
+  // An unknown name is refused before anything is created (also no --out directory).
   for (const auto& name : opt.only)
     if (std::none_of(entries.begin(), entries.end(), [&](const ValidationEntry& e) { return e.name == name; })) {
-      std::fprintf(stderr, "error: no validation case '%s'\n", name.c_str());
+      std::fprintf(stderr, "error: %s\n", unknown_case_message(name, entries).c_str());
       return 2;
     }
   // The output directory: particula's own (a marker) or new or empty; its run directories are

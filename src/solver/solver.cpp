@@ -329,6 +329,15 @@ real Solver::stable_dt() const {
 }
 
 std::optional<Failure> Solver::step(real dt_cap) {
+  return advance(dt_cap, std::numeric_limits<real>::quiet_NaN());
+}
+
+std::optional<Failure> Solver::step_to(real t_target) {
+  const real cap = t_target - t_;
+  return cap > 0 ? advance(cap, t_target) : advance(0, std::numeric_limits<real>::quiet_NaN());
+}
+
+std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   if (dev_ && !device_current_) {
     dev_->upload(P_);
     device_current_ = true;
@@ -355,6 +364,9 @@ std::optional<Failure> Solver::step(real dt_cap) {
     if (dt_cap > 0) dt_ = std::min(dt_, dt_cap);
   }
   const real dt = dt_;
+  // The time at the end of the step: exactly land_at when the cap limits the step (t_ + dt can
+  // miss it in the last bit), so that output times are the values they stand for.
+  const real t_new = dt_cap > 0 && dt == dt_cap && std::isfinite(land_at) ? land_at : t_ + dt;
   {
     PhaseTimer timer(times_.bodies);
     contact_forces(dt);
@@ -375,7 +387,7 @@ std::optional<Failure> Solver::step(real dt_cap) {
   auto bodies_stage = [&] {
     PhaseTimer timer(times_.bodies);
     group_loads();
-    body_stage(dt, t_ + dt, gv0, gw0);
+    body_stage(dt, t_new, gv0, gw0);
     set_boundary_kinematics();
   };
 
@@ -423,7 +435,7 @@ std::optional<Failure> Solver::step(real dt_cap) {
     vmax2 = end_of_step(dt);
   }
   if (!prm_.single_layer) boundary_pressure();  // dummies copy the averaged surface values
-  t_ += dt;
+  t_ = t_new;
   ++steps_;
   {
     PhaseTimer timer(times_.bodies);

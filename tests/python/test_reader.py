@@ -17,6 +17,12 @@ def test_csv_columns_units_and_incomplete_last_line(particula, tmp_path):
     assert t.where(t["body"] == 1)["x"].tolist() == [0.25]
     f.write_text("# units: s,-,m\ntime,body,x\n0,0,0.5\n")
     assert particula.read_csv(f).units == {"time": "s", "body": "-", "x": "m"}
+    # particula's own form: the units line after the header, naming each column
+    f.write_text("time,body,x\n# units: time [s], body [-], x [m]\n0,0,0.5\n")
+    t = particula.read_csv(f)
+    assert t.units == {"time": "s", "body": "-", "x": "m"} and t.rows == 1
+    f.write_text("time,body,x\n# units: body [-], time [s], x [m]\n0,0,0.5\n")  # not these columns
+    assert particula.read_csv(f).units == {}
     f.write_text("time,body,x\n")
     assert particula.read_csv(f).rows == 0
 

@@ -5,7 +5,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import COUETTE, ROOT, case
+from conftest import COUETTE, HYDROSTATIC, ROOT, case
 
 SETTLING = os.path.join(ROOT, "tests", "python", "data", "settling.toml")
 BINARY = os.environ.get("PARTICULA_BINARY", os.path.join(ROOT, "build", "release", "particula"))
@@ -27,6 +27,21 @@ def test_run_directory_is_the_clis(settling_run):
     assert settling_run.case["name"] == "settling"
 
 
+def test_summary_says_what_made_the_run(settling_run):
+    summary = settling_run.summary
+    version = subprocess.run([BINARY, "--version"], capture_output=True, text=True).stdout.strip()
+    assert version == "particula %s (commit %s)" % (summary["version"], summary["commit"])
+    assert version in settling_run.log  # log.txt names the build too
+    assert summary["exit_code"] == 0 and "failure" not in summary
+    assert summary["d0"] == 2.5e-4 and summary["h"] == pytest.approx(2.6 * 2.5e-4, rel=1e-15)
+    assert 0 < summary["dt_min"] <= summary["dt_max"] <= summary["end_time"]
+    assert summary["overrides"] == [] and summary["backend"] == "cpu" and summary["threads"] >= 1
+    # the legend of the body and wall numbers
+    assert summary["bodies"] == [{"index": 0, "name": "cylinder", "shape": "circle", "motion": "free"}]
+    assert [w["name"] for w in summary["walls"]] == ["bottom", "right", "top", "left"]
+    assert [w["index"] for w in summary["walls"]] == [0, 1, 2, 3]
+
+
 def test_every_snapshot_matches_summary_and_bodies(settling_run):
     run = settling_run
     summary = run.summary
@@ -39,6 +54,11 @@ def test_every_snapshot_matches_summary_and_bodies(settling_run):
         assert snap.num_points == summary["particles"], snap.path
         assert snap.time in body_times, snap.time  # written at an output time, the same double
         assert np.count_nonzero(snap["kind"] == 0) == summary["fluid_particles"]
+        # bodies and walls by their case index, as in bodies.csv and walls.csv
+        fluid = snap["kind"] == 0
+        assert np.all(snap["body"][fluid] == -1) and np.all(snap["wall"][fluid] == -1)
+        assert set(snap["body"][~fluid]) == {-1, 0} and set(snap["wall"][~fluid]) == {-1, 0, 1, 2, 3}
+        assert np.all((snap["body"] == -1) | (snap["wall"] == -1))
         assert snap["velocity"].shape == (summary["particles"], 2)
         assert sorted(snap["id"]) == list(range(summary["particles"]))
     # bodies.csv: one row per output time (interval 0.0025), for the one body
@@ -47,6 +67,32 @@ def test_every_snapshot_matches_summary_and_bodies(settling_run):
     assert np.array_equal(run.bodies["body"], np.zeros(len(times)))
     assert run.walls.rows == 4 * len(times)
     assert np.array_equal(run.wall(2)["time"], times)
+
+
+def test_csv_units_and_decimal_output_times(particula, tmp_path):
+    # every CSV names its units; output times are the decimals they stand for (7 x 0.05 is
+    # written 0.35, not 0.35000000000000003)
+    out = tmp_path / "hydro"
+    particula.run_case(case("hydrostatic"), out, dict(HYDROSTATIC, **{"output.interval": 0.05, "time.end": 0.35}),
+                       plots=False)
+    run = particula.read_run(out)
+    assert run.walls.units == {"time": "s", "wall": "-", "fx": "N/m", "fy": "N/m", "fpx": "N/m", "fpy": "N/m",
+                               "fvx": "N/m", "fvy": "N/m"}
+    assert list(np.unique(run.walls["time"])) == [0, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35]
+    assert run.summary["end_time"] == 0.35
+    assert "0.35000000000000003" not in (out / "walls.csv").read_text()
+    # numpy's own readers skip the units line
+    data = np.genfromtxt(out / "walls.csv", delimiter=",", names=True)
+    assert data.dtype.names[:2] == ("time", "wall") and len(data) == run.walls.rows
+    assert np.loadtxt(out / "walls.csv", delimiter=",", skiprows=1).shape == (run.walls.rows, 8)
+
+
+def test_body_csv_units(settling_run):
+    units = settling_run.bodies.units
+    assert units["time"] == "s" and units["x"] == "m" and units["omega"] == "rad/s"
+    assert units["fx"] == "N/m" and units["torque"] == "N m/m" and units["fcy"] == "N/m"
+    assert set(settling_run.bodies) == set(units)
+    assert settling_run.probes["midline"].units["p"] == "Pa"
 
 
 def test_reader_agrees_with_the_module_bitwise(particula, settling_run):
@@ -126,5 +172,12 @@ def test_numerical_failure_of_a_run(particula, tmp_path):
     result = particula.run_case(case("hydrostatic"), out, sets, plots=False, overwrite=True, check=False)
     assert result.exit_code == 3 and "numerical failure" in result.message
     run = result.read()
-    assert run.summary["status"] == "failed"
+    assert run.summary["status"] == "failed" and run.summary["exit_code"] == 3
+    failure = run.summary["failure"]  # structured: reason, time, step, particle, position
+    assert failure["time"] == run.summary["end_time"] and failure["step"] == run.summary["steps"]
+    assert isinstance(failure["particle"], int) and len(failure["position"]) == 2
+    assert failure["reason"] in result.message
+    from particula.overrides import override_list
+    assert run.summary["overrides"] == override_list(sets) == ["resolution.d0=0.005", "fluid.c=0.05",
+                                                               "time.dt_max=0.001"]
     assert run.snapshots.times[-1] == run.summary["end_time"]  # the final snapshot is written

@@ -3,7 +3,8 @@
 //
 // Everything else is derived from this table: the loader (type, range and required checks,
 // unknown-key detection with suggestions, --set overrides), the resolved case written back to a
-// run directory, and the generated reference docs/case-files.md.
+// run directory, the generated reference docs/case-files.md and the JSON Schema for editors
+// (`particula schema --json`, src/case/json_schema.cpp).
 //
 // Adding a key = one row in src/case/schema.cpp (its binding is the assignment into Case).
 // Adding an array of tables (e.g. [[body]]) = one row in the section table plus its member rows.
@@ -142,6 +143,10 @@ std::string format_toml_value(const Value& value);
 /// The default of a row as documented: "required", "one of fluid.nu / fluid.mu", or the value;
 /// rows with `used_when` add where they are used ("required for shape circle, half_disc").
 std::string default_text(const KeySpec& spec);
+
+/// The case-file schema as a JSON Schema (draft-07; types, units, defaults, ranges, choices,
+/// required keys, arrays of tables), for editors: `particula schema --json` prints it.
+std::string case_json_schema();
 
 /// The case-file reference (markdown, one table per section) generated from the schema.
 /// docs/case-files.md is this text; a test fails when they differ.

@@ -1,4 +1,4 @@
-// A minimal JSON writer for summary.json, and one lookup helper for tests.
+// A minimal JSON writer for summary.json and the case-file JSON Schema, and lookup helpers for tests.
 #pragma once
 
 #include <concepts>
@@ -12,9 +12,14 @@
 
 namespace particula::io {
 
+/// Verbatim JSON text stored as a value (e.g. a default of any type, formatted by the caller).
+struct JsonRaw {
+  std::string text;
+};
+
 /// A JSON object whose keys keep their insertion order. Setting an existing key replaces
-/// its value in place. Doubles are written with round-trip precision; NaN and infinities
-/// (which JSON cannot represent) are written as null.
+/// its value in place. Doubles are written in their shortest round-trip form (io/number.hpp);
+/// NaN and infinities (which JSON cannot represent) are written as null.
 class JsonObject {
  public:
   JsonObject& set(std::string_view key, double value) { return put(key, value); }
@@ -23,9 +28,13 @@ class JsonObject {
   JsonObject& set(std::string_view key, std::string_view value) { return put(key, std::string(value)); }
   JsonObject& set(std::string_view key, const char* value) { return put(key, std::string(value)); }
   JsonObject& set(std::string_view key, std::vector<double> value) { return put(key, std::move(value)); }
+  JsonObject& set(std::string_view key, std::vector<std::string> value) { return put(key, std::move(value)); }
+  JsonObject& set(std::string_view key, JsonRaw value) { return put(key, std::move(value)); }
   JsonObject& set(std::string_view key, JsonObject value) {
     return put(key, std::make_shared<const JsonObject>(std::move(value)));
   }
+  /// An array of objects (one per line when indented).
+  JsonObject& set(std::string_view key, const std::vector<JsonObject>& value);
   /// Any integer type other than bool, stored as int64 (unsigned values above INT64_MAX wrap).
   template <std::integral T>
   requires(!std::same_as<T, bool>) JsonObject& set(std::string_view key, T value) {
@@ -40,8 +49,9 @@ class JsonObject {
   std::string dump(int indent = 2) const;
 
  private:
-  using Value = std::variant<double, std::int64_t, bool, std::string, std::vector<double>,
-                             std::shared_ptr<const JsonObject>>;
+  using ObjectList = std::vector<std::shared_ptr<const JsonObject>>;
+  using Value = std::variant<double, std::int64_t, bool, std::string, std::vector<double>, std::vector<std::string>,
+                             JsonRaw, std::shared_ptr<const JsonObject>, ObjectList>;
   JsonObject& put(std::string_view key, Value value);
   void dump_to(std::string& out, int indent, int depth) const;
 
@@ -50,6 +60,9 @@ class JsonObject {
 
 /// JSON string literal for `s` (quotes included), escaping '"', '\\' and control characters.
 std::string json_escape(std::string_view s);
+
+/// A double as JSON: its shortest round-trip text, null when not finite.
+std::string json_number(double v);
 
 /// The number after the first `"key":` in JSON text (NaN for null). Throws std::runtime_error
 /// when the key is absent or its value is neither a number nor null. Meant for tests.

@@ -1,6 +1,7 @@
 // Observers of a run: each writes one kind of output from the solver's state.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -14,10 +15,17 @@
 
 namespace particula {
 
+/// Per particle: the case index of the body ([[body]] order) it belongs to, or with `walls` of
+/// its wall ([[wall]] order); -1 for fluid particles and particles of the other kind of group.
+/// The `body` and `wall` arrays of the snapshots (bodies.csv and walls.csv number them alike).
+std::vector<std::int32_t> particle_case_index(const Particles& P, const std::vector<RigidGroup>& groups, bool walls);
+
 // Long writes (a probe of many points, a snapshot of many particles) poll a stop check (the run's
 // SIGINT/SIGTERM flag) and give up with io::Cancelled, having written nothing, when it is set.
 
-/// particles.pvd + particles/step_<n>.vtp snapshots (pressure, velocity, density, kind, body).
+/// particles.pvd + particles/step_<n>.vtp snapshots: pressure, velocity, density, kind (Kind:
+/// 0 fluid, 1 wall or body surface, 2 dummy), body (case index of the body a particle belongs to,
+/// -1 otherwise), wall (case index of its wall, -1 otherwise) and id.
 class SnapshotWriter {
  public:
   explicit SnapshotWriter(std::filesystem::path run_dir, io::StopCheck stop = {});
@@ -30,7 +38,7 @@ class SnapshotWriter {
 };
 
 /// One line probe: probe_<name>.csv with time,x,y,vx,vy,p and, when the case declares an
-/// exact solution, vx_exact; also tracks the profile error against it. The rows of one time
+/// exact solution, vx_exact (units in the file's "# units:" line); also tracks the profile error against it. The rows of one time
 /// are written together, or (io::Cancelled) not at all.
 class ProbeWriter {
  public:
@@ -55,7 +63,8 @@ class ProbeWriter {
 
 /// bodies.csv: one row per body per output, columns of design.md (f = hydrodynamic force,
 /// pressure part fp + viscous part fv; fc = collision force, P.38), and walls.csv: the
-/// hydrodynamic force on each wall segment (e.g. the wall shear of a Couette flow).
+/// hydrodynamic force on each wall segment (e.g. the wall shear of a Couette flow). Bodies and
+/// walls by their case index; units (forces per unit depth) in each file's "# units:" line.
 class BodyHistoryWriter {
  public:
   explicit BodyHistoryWriter(const std::filesystem::path& run_dir);

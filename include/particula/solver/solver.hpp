@@ -135,6 +135,10 @@ class Solver {
   /// Advances one full time step of at most `dt_cap` (used to land on output and end times).
   /// Returns the failure, if any, detected at its end.
   std::optional<Failure> step(real dt_cap = 0);
+  /// Advances one full time step of at most t_target - time(); when that cap is what limits the
+  /// step, the new time is exactly t_target (time() + dt may differ in the last bit), so that a
+  /// run lands on its output times. t_target <= time() means no cap, as step(0).
+  std::optional<Failure> step_to(real t_target);
 
   real time() const { return t_; }
   real last_dt() const { return dt_; }
@@ -179,6 +183,9 @@ class Solver {
   void compute_pressure_gradient(const std::vector<real>& p, const std::vector<real>& rho);
 
  private:
+  /// The step of step() and step_to(): at most dt_cap (0: no cap), ending exactly at land_at
+  /// (when finite) if the cap limits it.
+  std::optional<Failure> advance(real dt_cap, real land_at);
   void place_boundary(real t);
   void set_boundary_kinematics();
   void update_volumes();
