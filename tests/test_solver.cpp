@@ -112,6 +112,26 @@ TEST(Solver, DummyParticleBaselineRunsCouette) {
   EXPECT_LT(err, 0.05);
 }
 
+TEST(Solver, CollapsedTimeStepStopsTheRunAndNamesTheClosestPair) {
+  // Two fluid particles 1e-6 d0 apart: the Courant limit at their distance is 1e6 times below
+  // the case's own step, far past kTimeStepCollapse; the run must stop instead of crawling.
+  const Case c = busy_box();
+  Scene scene = build_scene(c);
+  Particles& P = scene.particles;
+  const std::size_t a = P.n_boundary + (P.size() - P.n_boundary) / 2, b = a + 1;
+  ASSERT_LT(b, P.size());
+  P.x[b] = P.x[a] + Vec2{1e-6 * c.d0, 0};
+  Solver s(scene.params, scene.domain, P, scene.groups);
+  const std::optional<Failure> f = s.step();
+  ASSERT_TRUE(f.has_value());
+  EXPECT_NE(f->what.find("time step collapsed"), std::string::npos) << f->what;
+  EXPECT_NE(f->what.find("particles collapsing"), std::string::npos) << f->what;
+  EXPECT_EQ(s.step_count(), 0);
+  // The same box without the pair steps normally: the guard does not fire on a healthy case.
+  Solver healthy = make_solver(c);
+  for (int k = 0; k < 20; ++k) ASSERT_FALSE(healthy.step().has_value());
+}
+
 TEST(Solver, BlowUpIsDetectedWithParticleAndReason) {
   // A sound speed far below sqrt(g H): the density leaves [0.5, 2] rho0 within a few steps.
   Case c = busy_box();

@@ -1,5 +1,7 @@
 #include "particula/solver/solver.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -328,6 +330,28 @@ real Solver::stable_dt() const {
   return dt;
 }
 
+std::optional<Failure> Solver::time_step_collapse(real dt) const {
+  // The step of the case's own scales: P.30 at the particle spacing and sound speed, P.31 at d0.
+  real dt_scale = prm_.cfl * prm_.d0 / prm_.c;
+  if (prm_.nu > 0) dt_scale = std::min(dt_scale, prm_.cfl * prm_.d0 * prm_.d0 / prm_.nu);
+  if (prm_.dt_max > 0) dt_scale = std::min(dt_scale, prm_.dt_max);
+  if (!(dt < kTimeStepCollapse * dt_scale)) return std::nullopt;
+  // Name the limit that collapsed: the closest particle pair, the fastest particle or a contact.
+  const real dlist = dev_ ? dev_->min_distance() : nl_.min_distance;
+  const real vmax = max_speed();
+  std::string why;
+  if (contact_dt_ > 0 && contact_dt_ <= dt)
+    why = "the stability limit of a contact (t_c / 20): a contact too stiff for its bodies' masses (collision.*)";
+  else if (vmax > prm_.c)
+    why = fmt::format("a particle at {:.3g} m/s, {:.3g} times the sound speed: the flow has blown up", vmax, vmax / prm_.c);
+  else
+    why = fmt::format("two particles {:.3g} d0 apart: particles collapsing onto each other", dlist / prm_.d0);
+  return Failure{fmt::format("the time step collapsed to {:.3g} s, below {:g} of the case's {:.3g} s (cfl d0 / c, "
+                             "cfl d0^2 / nu); it is limited by {}",
+                             dt, kTimeStepCollapse, dt_scale, why),
+                 -1, Vec2{}};
+}
+
 std::optional<Failure> Solver::step(real dt_cap) {
   return advance(dt_cap, std::numeric_limits<real>::quiet_NaN());
 }
@@ -361,6 +385,7 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   {
     PhaseTimer timer(times_.integration);
     dt_ = stable_dt();
+    if (auto f = time_step_collapse(dt_)) return f;
     if (dt_cap > 0) dt_ = std::min(dt_, dt_cap);
   }
   const real dt = dt_;

@@ -111,6 +111,10 @@ struct PhaseTimes {
 };
 
 /// A numerical failure detected after a step (exit code 3).
+/// A stable time step below this fraction of the case's own (cfl d0 / c, cfl d0^2 / nu) is a
+/// collapse: 1e4 times more steps than the case was sized for.
+inline constexpr real kTimeStepCollapse = 1e-4;
+
 struct Failure {
   std::string what;
   std::int64_t particle_id = -1;
@@ -237,6 +241,10 @@ class Solver {
   /// What a failure at fluid position x most likely comes from, for the exit-3 message.
   std::string likely_cause(Vec2 x) const;
   real max_speed() const;
+  /// A failure when the stable time step `dt` has fallen below kTimeStepCollapse of the case's
+  /// own step (P.30-P.31 at d0 and c): a run that would crawl for ever is stopped with exit 3,
+  /// naming the limit that collapsed (closest pair, fastest particle or a contact).
+  std::optional<Failure> time_step_collapse(real dt) const;
 
   StageParams stage_params(real dt) const;
   HealthLimits health_limits() const;
