@@ -2,10 +2,16 @@
 
 namespace particula {
 
-void free_body_stage(RigidGroup& g, Vec2 v0, real omega0, Vec2 force, real torque, real dt) {
-  g.vel = v0 + (dt / g.mass) * force;
+void free_body_stage(RigidGroup& g, Vec2 v0, real omega0, Vec2 force, real torque, real dt, real added_mass) {
+  if (added_mass > 0) {
+    const Vec2 a = (force + added_mass * g.acc) / (g.mass + added_mass);
+    g.vel = v0 + dt * a;
+    g.acc = a;
+  } else {
+    g.vel = v0 + (dt / g.mass) * force;
+    g.acc = (g.vel - v0) / dt;
+  }
   g.omega = omega0 + dt * torque / g.inertia;
-  g.acc = (g.vel - v0) / dt;
   g.alpha = (g.omega - omega0) / dt;
 }
 

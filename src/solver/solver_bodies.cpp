@@ -88,7 +88,8 @@ void Solver::body_stage(real dt, real t_stage_end, const std::vector<Vec2>& v0, 
     if (g.motion == Motion::Free) {
       const Vec2 weight = body_weight(g.mass, g.area, prm_.rho0, prm_.gravity, prm_.gravity_in_fluid);
       const Vec2 force = g.force_pressure + g.force_viscous + g.force_collision + weight;
-      free_body_stage(g, v0[k], omega0[k], force, g.torque + g.torque_collision, dt);
+      free_body_stage(g, v0[k], omega0[k], force, g.torque + g.torque_collision, dt,
+                      stabilizing_added_mass(prm_.rho0, g.area, g.mass));
     } else if (g.motion == Motion::Prescribed && g.body >= 0) {
       const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
       const PrescribedState st = prescribed_state(b.schedule, b.velocity, b.omega, t_stage_end);

@@ -133,9 +133,11 @@ PARTICULA_HD real film_fraction(const NearSurfaces& ns, real film_gap, const Dom
 /// An isolated fluid particle (docs/method-notes.md, "Isolated particles"): the fluid within its
 /// kernel support, its own volume left out, weighs less than one neighbour at one particle
 /// spacing, sum_{j fluid, j != i} w_j W_ij < d0^2 W(d0), and a surface is near. P.20 of a surface
-/// particle leaves such particles out (sweeps.hpp, wall_pressure_at): a lone particle in a wedge
+/// particle leaves such particles out (sweeps.hpp, wall_pressure_at), and they take their pressure
+/// from the surface particles around them (isolated_pressure_at): a lone particle in a wedge
 /// between two solids set the P.20 pressures of the surface particles around it, whose pressure
-/// gradient in turn drove the particle, a loop that shot it out at several times the sound speed.
+/// gradient in turn drove the particle, a loop that shot it out at several times the sound speed;
+/// and its continuity equation, with no fluid around it, compressed it in a closing gap.
 PARTICULA_HD bool isolated(real others_fluid_support, real one_neighbour_support, std::uint32_t nearest_surface) {
   return nearest_surface != kNoSurface && others_fluid_support < one_neighbour_support;
 }

@@ -73,9 +73,11 @@ std::vector<ValidationCheck> check_channel_cylinder(const std::filesystem::path&
 /// A suspension sheared between the walls at domain.min.y and domain.max.y (periodic in x): the
 /// strain reached (at least `min_strain`), the relative viscosity (mean wall shear stress over
 /// the second half of the run / (mu gamma)) within [lo, hi], and the two walls' forces
-/// balancing (their sum within 10 % of either).
+/// balancing (their sum within 10 % of either); `reference` is what the report shows as the
+/// expected relative viscosity.
 std::vector<ValidationCheck> check_sheared_suspension(const std::filesystem::path& run_dir, const Case& c,
-                                                      double min_strain, double lo, double hi);
+                                                      double min_strain, double lo, double hi,
+                                                      const std::string& reference = "about 2.5 (2D Krieger-Dougherty at 0.35)");
 /// A dilute suspension of circles sheared as above: those checks (relative viscosity within
 /// [1, 1 + 4 phi]) and the intrinsic viscosity (mu_r - 1) / phi against the 2D Einstein value 2
 /// (within [1, 3]), mu_r the mean over the second half with its standard error from 10 block
