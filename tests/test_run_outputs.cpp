@@ -34,7 +34,7 @@ Case probed_box() {
   Case c = cases::closed_box(0.02, 0.02, 1e-3);
   c.output_interval = 0.1;
   c.snapshots = false;
-  c.probes = {{"mid", {0.01, 0}, {0.01, 0.02}, 11, 0.1}};
+  c.probes = {{"mid", {0.01, 0}, {0.01, 0.02}, 11, 0.1, ProbeKind::Line, {}}};
   return c;
 }
 
