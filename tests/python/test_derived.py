@@ -12,8 +12,9 @@ SETTLING = os.path.join(ROOT, "tests", "python", "data", "settling.toml")
 
 
 @pytest.fixture(scope="module")
-def derived_run(particula, tmp_path_factory):
-    tmp = tmp_path_factory.mktemp("runs")
+def derived_case(tmp_path_factory):
+    """The settling case with coefficient references and a probe at two points."""
+    tmp = tmp_path_factory.mktemp("cases")
     case_file = tmp / "derived.toml"
     with open(SETTLING) as f:
         text = f.read()
@@ -28,8 +29,13 @@ kind = "points"
 at = [[0.005, 0.004], [0.005, 0.0]]  # the second on the bottom wall
 interval = 0.005
 """)
-    out = tmp / "derived"
-    result = particula.run_case(case_file, out, plots=False)
+    return case_file
+
+
+@pytest.fixture(scope="module")
+def derived_run(particula, derived_case, tmp_path_factory):
+    out = tmp_path_factory.mktemp("runs") / "derived"
+    result = particula.run_case(derived_case, out, plots=False)
     assert result.exit_code == 0
     return particula.read_run(out)
 
@@ -68,3 +74,12 @@ def test_line_probe_flow_rate_and_point_probe(derived_run):
     assert near > 0
     assert np.all(np.abs(spots["vx"][:, 1]) <= 1e-3 * near)
     assert np.all(np.abs(spots["vy"][:, 1]) <= 1e-3 * near)
+
+
+def test_resumed_run_writes_the_same_derived_files(particula, derived_case, derived_run, tmp_path):
+    half = tmp_path / "half"
+    assert particula.run_case(derived_case, half, {"time.end": 0.005}, plots=False).exit_code == 0
+    assert particula.resume(half, {"time.end": 0.01}, plots=False).exit_code == 0
+    for name in ("coefficients.csv", "flow_midline.csv", "probe_spots.csv"):
+        with open(os.path.join(derived_run.dir, name)) as a, open(half / name) as b:
+            assert a.read() == b.read(), name
