@@ -130,6 +130,8 @@ def eng(value, unit):
     """A magnitude with an SI prefix: eng(7e-5, 'm') = '70 um'."""
     if value == 0 or not math.isfinite(value):
         return "0 %s" % unit
+    if unit == "-":
+        return "%.3g" % value
     for factor, prefix in ((1, ""), (1e-3, "m"), (1e-6, "u"), (1e-9, "n")):
         if abs(value) >= factor:
             return "%.3g %s%s" % (value / factor, prefix, unit)
@@ -208,9 +210,11 @@ def plot_line_probe(run, name, out):
 def plot_point_probe(run, name, out):
     p = run.probe(name)
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
+    speed = float(np.max(np.hypot(p["vx"], p["vy"])))
     for ax, col in zip(axes, ("vx", "vy")):
         for k in range(len(p["x"])):
             ax.plot(p["time"], p[col][:, k], "o-", ms=3, label="(%.4g, %.4g) m" % (p["x"][k], p["y"][k]))
+        min_span(ax, [float(v) for v in p[col].ravel()], 0.1 * speed, "m/s", col)
         ax.set_xlabel("t (s)")
         ax.set_ylabel("%s (m/s)" % col)
         ax.grid(True, alpha=0.3)
@@ -341,6 +345,9 @@ def plot_coefficients(run, out):
         name = specs[b].get("name", "body %d" % b) if b < len(specs) else "body %d" % b
         axes[0].plot(rows["time"], rows["cd"], color="C%d" % k, label="%s (Re = %.3g)" % (name, rows["re"][-1]))
         axes[1].plot(rows["time"], rows["cl"], color="C%d" % k, label=name)
+    # a lift far below the drag must not fill its panel
+    cd_max = float(np.max(np.abs(c["cd"])))
+    min_span(axes[1], [float(v) for v in c["cl"]], 0.1 * cd_max, "-", "C_L")
     for ax, label in zip(axes, ("drag coefficient C_D (-)", "lift coefficient C_L (-)")):
         ax.set_xlabel("t (s)")
         ax.set_ylabel(label)
