@@ -437,3 +437,79 @@ TEST(CaseLoadErrors, ProbePointsRequiredAndAtLeastTwo) {
   expect_error(probe, "probe[0].points", "points", "must be in [2, 1000000]");
   expect_error(with(probe, "points = 1\n", ""), "probe[0].points", "[[probe]]", "missing required key");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Probes at points and coefficient references (issue 16, item 3).
+
+namespace {
+const std::string kPointProbe = kMinimal + R"(
+[[probe]]
+name = "spots"
+kind = "points"
+at = [[5e-4, 5e-4], [5e-4, 0.0]]
+interval = 0.1
+)";
+
+/// kMinimal with a fixed circle of radius 2e-4 m (16 particles across) and `extra` appended.
+std::string with_body(const std::string& analysis, const std::string& body_extra) {
+  return kMinimal + analysis + R"(
+[[body]]
+name = "disc"
+shape = "circle"
+center = [5e-4, 5e-4]
+radius = 2e-4
+motion = "fixed"
+)" + body_extra;
+}
+}  // namespace
+
+TEST(CaseLoad, PointProbeLoadsItsPoints) {
+  const Case c = load_case_text(kPointProbe, kFile);
+  ASSERT_EQ(c.probes.size(), 1u);
+  EXPECT_EQ(c.probes[0].kind, ProbeKind::Points);
+  const auto pts = probe_points(c.probes[0]);
+  ASSERT_EQ(pts.size(), 2u);
+  EXPECT_EQ(pts[1].x, 5e-4);
+  EXPECT_EQ(pts[1].y, 0.0);
+  // a single point
+  const Case one = load_case_text(with(kPointProbe, "at = [[5e-4, 5e-4], [5e-4, 0.0]]", "at = [[1e-4, 2e-4]]"), kFile);
+  EXPECT_EQ(probe_point_count(one.probes[0]), 1u);
+}
+
+TEST(CaseLoad, PointProbeErrors) {
+  expect_error(with(kPointProbe, "at = [[5e-4, 5e-4], [5e-4, 0.0]]", "at = [[5e-4, 5e-4], [5e-4, -1e-4]]"),
+               "probe[0].at[1]", "at = ", "outside the domain");
+  expect_error(with(kPointProbe, "interval = 0.1", "interval = 0.1\nfrom = [0.0, 0.0]"), "probe[0].from",
+               "from = [0.0, 0.0]", "not used by kind 'points'");
+  expect_error(with(kPointProbe, "at = [[5e-4, 5e-4], [5e-4, 0.0]]\n", ""), "probe[0].at", "[[probe]]",
+               "missing required key");
+  // a line probe still needs its line
+  expect_error(with(kPointProbe, "kind = \"points\"", "kind = \"line\""), "probe[0].from", "[[probe]]",
+               "missing required key");
+}
+
+TEST(CaseLoad, CoefficientReferencesFromAnalysisOrTheBody) {
+  const Case a = load_case_text(with_body("\n[analysis]\nreference_velocity = [0.0, 0.01]\nreference_length = 4e-4\n", ""),
+                                kFile);
+  EXPECT_TRUE(body_reference(a, 0).complete());
+  EXPECT_EQ(body_reference(a, 0).velocity.y, 0.01);
+  // the body's own velocity with [analysis]'s length
+  const Case b = load_case_text(
+      with_body("\n[analysis]\nreference_length = 4e-4\n", "reference_velocity = [0.02, 0.0]\n"), kFile);
+  EXPECT_EQ(body_reference(b, 0).velocity.x, 0.02);
+  EXPECT_EQ(body_reference(b, 0).length, 4e-4);
+  // none at all: no coefficients, no error
+  EXPECT_FALSE(body_reference(load_case_text(with_body("", ""), kFile), 0).complete());
+}
+
+TEST(CaseLoad, HalfAReferenceIsAnError) {
+  const std::string length_only = with_body("\n[analysis]\nreference_length = 4e-4\n", "");
+  expect_error(length_only, "analysis.reference_length", "reference_length = 4e-4", "no reference_velocity");
+  const std::string body_velocity_only = with_body("", "reference_velocity = [0.02, 0.0]\n");
+  expect_error(body_velocity_only, "body[0].reference_velocity", "reference_velocity = [0.02",
+               "no reference_length");
+  expect_error(kMinimal + "\n[analysis]\nreference_velocity = [1.0, 0.0]\n", "analysis.reference_velocity",
+               "reference_velocity = [1.0", "give both or neither");
+  expect_error(with_body("\n[analysis]\nreference_length = -1.0\n", ""), "analysis.reference_length",
+               "reference_length = -1.0", ">= 0");
+}

@@ -257,6 +257,11 @@ from = [0, 0]
 to = [1, 1]
 points = 5
 interval = 0.1
+[[probe]]
+name = "q"
+kind = "points"
+at = [[0.5, 0.5]]
+interval = 0.1
 [[body]]
 shape = "circle"
 center = [0.2, 0.2]

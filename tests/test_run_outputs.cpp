@@ -34,7 +34,7 @@ Case probed_box() {
   Case c = cases::closed_box(0.02, 0.02, 1e-3);
   c.output_interval = 0.1;
   c.snapshots = false;
-  c.probes = {{"mid", {0.01, 0}, {0.01, 0.02}, 11, 0.1}};
+  c.probes = {{"mid", {0.01, 0}, {0.01, 0.02}, 11, 0.1, ProbeKind::Line, {}}};
   return c;
 }
 
@@ -135,4 +135,69 @@ TEST(RunOutputs, NonFiniteGroupStateEndsTheStep) {
   }
   Solver ok = solver_with(c, [](Particles&, std::vector<RigidGroup>&) {});
   EXPECT_FALSE(ok.step().has_value());
+}
+
+// ---- derived quantities (issue 16, item 3) ----------------------------------------------------
+
+TEST(DerivedOutputs, FlowRateIsTheIntegralOfTheNormalVelocity) {
+  // uniform u = (2, 0) through a vertical line 0.5 m long, walked upwards: n = +x, Q = 1 m^2/s
+  EXPECT_DOUBLE_EQ(flow_rate_of({0, 0}, {0, 0.5}, std::vector<Vec2>(7, Vec2{2, 0})), 1.0);
+  EXPECT_DOUBLE_EQ(flow_rate_of({0, 0.5}, {0, 0}, std::vector<Vec2>(7, Vec2{2, 0})), -1.0);  // walked down
+  EXPECT_DOUBLE_EQ(flow_rate_of({0, 0}, {0, 0.5}, std::vector<Vec2>(7, Vec2{0, 3})), 0.0);   // along the line
+  // a parabola u = 6 y (1 - y) across [0, 1] carries 1 m^2/s (trapezoidal error 1/(N-1)^2)
+  std::vector<Vec2> v;
+  for (int k = 0; k <= 100; ++k) v.push_back({6 * (k / 100.0) * (1 - k / 100.0), 0});
+  EXPECT_NEAR(flow_rate_of({0.3, 0}, {0.3, 1}, v), 1.0, 2e-4);
+}
+
+TEST(DerivedOutputs, CoefficientsFollowTheirDefinitions) {
+  // U = (0, 2) m/s upwards, L = 0.5 m, rho0 = 1000, nu = 1e-3: q = 0.5 rho0 U^2 L = 1000 N/m
+  const BodyReference ref{{0, 2}, 0.5};
+  const Coefficients k = body_coefficients(ref, {3, 4}, 50, {0, -0.5}, 1000, 1e-3);
+  EXPECT_DOUBLE_EQ(k.re, 1000.0);     // U L / nu
+  EXPECT_DOUBLE_EQ(k.re_body, 250.0);  // |v| L / nu
+  EXPECT_DOUBLE_EQ(k.cd, 4e-3);        // the force along U
+  EXPECT_DOUBLE_EQ(k.cl, -3e-3);       // the force along U turned 90 degrees counter-clockwise: -x
+  EXPECT_DOUBLE_EQ(k.cm, 0.1);         // T / (q L)
+}
+
+TEST(DerivedOutputs, RunWritesCoefficientsFlowAndPointProbes) {
+  const fs::path dir = fresh_dir("outputs_derived");
+  Case c = probed_box();
+  c.bodies.push_back({});
+  BodySpec& b = c.bodies.back();
+  b.name = "disc";
+  b.center = {0.01, 0.012};
+  b.radius = 0.005;
+  b.motion = BodyMotion::Fixed;
+  b.reference_velocity = {0.01, 0};
+  b.reference_length = 0.01;
+  ProbeSpec spot_probe;
+  spot_probe.name = "spots";
+  spot_probe.kind = ProbeKind::Points;
+  spot_probe.interval = 0.1;
+  spot_probe.at = {Vec2{0.003, 0.003}, Vec2{0.003, 0.0}};
+  c.probes.push_back(spot_probe);
+  // a linear shear u = y / s (the particles around the points: the bottom wall, at rest, and fluid)
+  const Solver s = solver_with(c, [](Particles& P, std::vector<RigidGroup>&) {
+    for (std::size_t i = P.n_boundary; i < P.size(); ++i) P.v[i] = {P.x[i].y, 0};
+  });
+  {
+    run_detail::RunOutputs out(dir, c);
+    EXPECT_FALSE(out.write(s, true).has_value());
+  }
+  const io::CsvTable coef = io::read_csv(dir / "coefficients.csv");
+  EXPECT_EQ(coef.header, (std::vector<std::string>{"time", "body", "re", "re_body", "cd", "cl", "cm"}));
+  ASSERT_EQ(coef.size(), 1u);
+  EXPECT_DOUBLE_EQ(coef.column("re").at(0), 0.01 * 0.01 / 1e-6);
+  const io::CsvTable flow = io::read_csv(dir / "flow_mid.csv");
+  // (the probe line x = 0.01 crosses the disc, whose surface particles are at rest: Q > 0 only)
+  EXPECT_EQ(flow.header, (std::vector<std::string>{"time", "flow_rate"}));
+  ASSERT_EQ(flow.size(), 1u);
+  EXPECT_FALSE(fs::exists(dir / "flow_spots.csv"));  // points have no flow rate
+  const io::CsvTable spots = io::read_csv(dir / "probe_spots.csv");
+  ASSERT_EQ(spots.size(), 2u);
+  EXPECT_NEAR(spots.column("vx").at(0), 0.003, 1e-9);  // inside: the (linear) field
+  EXPECT_NEAR(spots.column("vx").at(1), 0.0, 1e-9);    // on the wall: the wall's velocity
+  fs::remove_all(dir);
 }

@@ -3,105 +3,50 @@
 
   plot_run.py DIR
 
-- probe_<name>.csv: velocity profiles along each line probe at every written time, with the
-  exact solution (vx_exact column) where the case declares one, and the profile error in time;
-- bodies.csv: position, velocity, angle and force histories of every free or driven body
-  (walls only when they move), against reference data named in the case when present;
+Every figure's title names the case, its resolution (d0 and particles across the first body,
+or across the domain) and, for a run that failed or was interrupted, where it stopped.
+- probe_<name>.csv: for a line probe, velocity profiles at up to 8 written times (with the exact
+  solution where the case declares one, and the profile error in time); for a probe at points,
+  the velocity at each point in time;
+- flow_<name>.csv: the flow rate through each line probe in time (flow_rates.png);
+- bodies.csv: position, angle and velocity of every moving body (a fixed body has none to show)
+  and the hydrodynamic force on every body, against reference data named in the case; each
+  panel spans at least a physically meaningful range (a position one body diameter, an angle
+  0.1 rad, a velocity a tenth of the largest speed) and states the range of a smaller drift;
+- coefficients.csv: drag and lift coefficients in time (coefficients.png);
 - particles/*.vtp: the last snapshot's particles coloured by pressure and by each velocity
-  component, like the paper's contour figures.
-Uses Debian's python3-matplotlib; stdlib otherwise (the .vtp files are decoded here).
+  component, like the paper's contour figures (snapshot_fields.png).
+Reads the run with particula's own reader (python/particula/reader.py: NumPy, no VTK), loaded
+from its file so that the compiled module is not needed; draws with Debian's python3-matplotlib.
 """
-import base64
-import csv
+import importlib.util
 import math
 import os
-import struct
 import sys
-import xml.etree.ElementTree as ET
 
 try:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import numpy as np
 except ImportError:  # pragma: no cover - reported to the user by the caller
     sys.stderr.write("plot_run.py: matplotlib is not installed (apt-get install python3-matplotlib); no plots\n")
     sys.exit(4)
 
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))]
-    header, data = rows[0], rows[1:]
-    cols = {h: [] for h in header}
-    for r in data:
-        if len(r) != len(header):
-            continue  # a partial last line of an interrupted run
-        for h, v in zip(header, r):
-            cols[h].append(float(v))
-    return cols
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+REFERENCE_DIR = os.path.join(ROOT, "reference")
 
 
-def read_vtp(path):
-    """Points and point-data arrays of a particula .vtp (inline base64, UInt64 headers)."""
-    root = ET.parse(path).getroot()
-    piece = root.find("PolyData/Piece")
-    def decode(el):
-        raw = base64.b64decode(el.text.strip())
-        nbytes = struct.unpack("<Q", raw[:8])[0]
-        body = raw[8:8 + nbytes]
-        fmt = {"Float64": "d", "Int32": "i", "Int64": "q"}[el.get("type")]
-        return list(struct.unpack("<%d%s" % (nbytes // struct.calcsize(fmt), fmt), body)), int(el.get("NumberOfComponents", "1"))
-    pts, _ = decode(piece.find("Points/DataArray"))
-    arrays = {}
-    for el in piece.find("PointData").findall("DataArray"):
-        vals, nc = decode(el)
-        arrays[el.get("Name")] = [vals[i::nc] for i in range(nc)] if nc > 1 else [vals]
-    return pts[0::3], pts[1::3], arrays
+def load_reader():
+    """particula's run-directory reader (pure Python + NumPy), without the compiled module."""
+    path = os.path.join(ROOT, "python", "particula", "reader.py")
+    spec = importlib.util.spec_from_file_location("particula_reader", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
-def plot_probe(run, name, out):
-    cols = read_csv(os.path.join(run, "probe_%s.csv" % name))
-    all_times = sorted(set(cols["time"]))
-    # at most 8 profiles, evenly spread over the run, the last included
-    step = max(1, int(math.ceil((len(all_times) - 1) / 7.0)))
-    times = all_times[::step]
-    if times[-1] != all_times[-1]:
-        times.append(all_times[-1])
-    has_exact = "vx_exact" in cols
-    fig, ax = plt.subplots(figsize=(6.4, 4.8))
-    cmap = plt.get_cmap("viridis")
-    errs = []
-    for k, t in enumerate(times):
-        idx = [i for i, tt in enumerate(cols["time"]) if tt == t]
-        y = [cols["y"][i] for i in idx]
-        vx = [cols["vx"][i] for i in idx]
-        color = cmap(k / max(1, len(times) - 1))
-        ax.plot(vx, y, "o", ms=3, color=color, label="SPH t = %.3g s" % t)
-        if has_exact:
-            ex = [cols["vx_exact"][i] for i in idx]
-            ax.plot(ex, y, "-", lw=1, color=color, label="exact" if k == len(times) - 1 else None)
-            peak = max(1e-300, max(abs(v) for v in cols["vx_exact"]))
-            errs.append((t, math.sqrt(sum((a - b) ** 2 for a, b in zip(vx, ex)) / len(vx)) / peak))
-    ax.set_xlabel("vx (m/s)")
-    ax.set_ylabel("y (m)")
-    ax.set_title("probe '%s': velocity profiles%s" % (name, " against the exact solution" if has_exact else ""))
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "probe_%s_profiles.png" % name), dpi=120)
-    plt.close(fig)
-    if errs:
-        fig, ax = plt.subplots(figsize=(6.4, 3.6))
-        ax.semilogy([e[0] for e in errs[1:]], [max(e[1], 1e-12) for e in errs[1:]], "o-")
-        ax.set_xlabel("t (s)")
-        ax.set_ylabel("L2 error of vx / peak speed")
-        ax.set_title("probe '%s': profile error" % name)
-        ax.grid(True, which="both", alpha=0.3)
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "probe_%s_error.png" % name), dpi=120)
-        plt.close(fig)
-
-
-REFERENCE_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reference")
+reader = load_reader()
 
 # Published reference curves per case name: (file, x column, y column, bodies.csv column, label).
 REFERENCES = {
@@ -113,19 +58,7 @@ REFERENCES = {
 }
 
 
-def read_case(run):
-    """The resolved case.toml of the run as a dict ({} without it or without tomllib)."""
-    try:
-        import tomllib
-        with open(os.path.join(run, "case.toml"), "rb") as f:
-            return tomllib.load(f)
-    except Exception:  # no case.toml or no tomllib (Python < 3.11): plots without names and references
-        return {}
-
-
-def case_name(run):
-    return read_case(run).get("name", "")
-
+# ---- the case: sizes, names, titles ---------------------------------------------------------------
 
 def body_area(b):
     """Exact area of a [[body]] table (m^2), or None for an unknown shape."""
@@ -141,6 +74,172 @@ def body_area(b):
         return 0.5 * abs(sum(v[i][0] * v[(i + 1) % len(v)][1] - v[(i + 1) % len(v)][0] * v[i][1] for i in range(len(v))))
     return None
 
+
+def body_size(b):
+    """The smallest dimension of a [[body]] (m): a diameter, twice the smaller semi-axis, or the
+    smaller side of a polygon's bounding box; None for an unknown shape."""
+    shape = b.get("shape", "circle")
+    if shape == "circle":
+        return 2 * b["radius"]
+    if shape == "half_disc":
+        return b["radius"]
+    if shape == "ellipse":
+        return 2 * min(b["semi_axes"])
+    if shape == "polygon":
+        xs, ys = [v[0] for v in b["vertices"]], [v[1] for v in b["vertices"]]
+        return min(max(xs) - min(xs), max(ys) - min(ys))
+    return None
+
+
+def resolution_text(case):
+    """'d0 = 2.5e-04 m, 10 particles across cylinder' (the first moving body, else the first
+    body, else the domain's smaller side)."""
+    d0 = case.get("resolution", {}).get("d0")
+    if not d0:
+        return ""
+    bodies = case.get("body", [])
+    moving = [b for b in bodies if b.get("motion", "free") != "fixed"] or bodies
+    if moving and body_size(moving[0]):
+        across = "%.3g particles across %s" % (body_size(moving[0]) / d0, moving[0].get("name", "body 0"))
+    else:
+        lo, hi = case.get("domain", {}).get("min", [0, 0]), case.get("domain", {}).get("max", [0, 0])
+        across = "%.3g particles across the domain" % (min(hi[0] - lo[0], hi[1] - lo[1]) / d0)
+    return "d0 = %.3g m, %s" % (d0, across)
+
+
+def title(run, what):
+    """'<what>: case '<name>'' and below it 'd0 = ..., N particles across ...[, FAILED at t = ...]'."""
+    case, summary = run.case, run.summary or {}
+    parts = [resolution_text(case)]
+    status = summary.get("status", "")
+    if status == "failed":
+        parts.append("FAILED at t = %.4g s (exit 3)" % (summary.get("failure") or {}).get("time", summary.get("end_time", 0)))
+    elif status == "interrupted":
+        parts.append("interrupted at t = %.4g s" % summary.get("end_time", 0))
+    elif status and status != "completed":
+        parts.append("%s at t = %.4g s" % (status, summary.get("end_time", 0)))
+    return "%s: case '%s'\n%s" % (what, case.get("name", "") or run.dir, ", ".join(p for p in parts if p))
+
+
+def save(fig, out, name):
+    fig.savefig(os.path.join(out, name), dpi=110)
+    plt.close(fig)
+
+
+def eng(value, unit):
+    """A magnitude with an SI prefix: eng(7e-5, 'm') = '70 um'."""
+    if value == 0 or not math.isfinite(value):
+        return "0 %s" % unit
+    if unit == "-":
+        return "%.3g" % value
+    for factor, prefix in ((1, ""), (1e-3, "m"), (1e-6, "u"), (1e-9, "n")):
+        if abs(value) >= factor:
+            return "%.3g %s%s" % (value / factor, prefix, unit)
+    return "%.3g %s" % (value, unit)
+
+
+def min_span(ax, values, span, unit, label):
+    """Keeps the y axis at least `span` wide around `values` (a drift far below the physically
+    meaningful range must not fill the panel) and, when widened, states the drift's range."""
+    values = [v for v in values if math.isfinite(v)]
+    if not values or not span or span <= 0:
+        return
+    lo, hi = min(values), max(values)
+    if hi - lo >= span:
+        return
+    mid = 0.5 * (lo + hi)
+    ax.set_ylim(mid - 0.6 * span, mid + 0.6 * span)
+    ax.text(0.02, 0.04, "%s varies by %s only" % (label, eng(hi - lo, unit)), transform=ax.transAxes, fontsize=8,
+            color="0.3")
+
+
+# ---- probes -----------------------------------------------------------------------------------
+
+def probe_spec(case, name):
+    for p in case.get("probe", []):
+        if p.get("name") == name:
+            return p
+    return {}
+
+
+def plot_line_probe(run, name, out):
+    p = run.probe(name)
+    times = list(p["time"])
+    # at most 8 profiles, evenly spread over the run, the last included
+    step = max(1, int(math.ceil((len(times) - 1) / 7.0)))
+    shown = list(range(0, len(times), step))
+    if shown[-1] != len(times) - 1:
+        shown.append(len(times) - 1)
+    has_exact = "vx_exact" in p
+    spec = probe_spec(run.case, name)
+    vertical = abs(spec.get("to", [0, 1])[1] - spec.get("from", [0, 0])[1]) >= \
+        abs(spec.get("to", [1, 0])[0] - spec.get("from", [0, 0])[0])
+    pos, pos_label = (p["y"], "y (m)") if vertical else (p["x"], "x (m)")
+    fig, ax = plt.subplots(figsize=(7.5, 5.2))
+    cmap = plt.get_cmap("viridis")
+    for k, i in enumerate(shown):
+        color = cmap(k / max(1, len(shown) - 1))
+        if vertical:
+            ax.plot(p["vx"][i], pos, "o", ms=3, color=color, label="t = %.4g s" % times[i])
+        else:
+            ax.plot(pos, p["vx"][i], "o", ms=3, color=color, label="t = %.4g s" % times[i])
+        if has_exact:
+            args = (p["vx_exact"][i], pos) if vertical else (pos, p["vx_exact"][i])
+            ax.plot(*args, "-", lw=1, color=color, label="exact" if k == len(shown) - 1 else None)
+    ax.set_xlabel("vx (m/s)" if vertical else pos_label)
+    ax.set_ylabel(pos_label if vertical else "vx (m/s)")
+    ax.grid(True, alpha=0.3)
+    ax.set_title(title(run, "probe '%s': vx along the line%s" % (name, " (lines: exact)" if has_exact else "")),
+                 fontsize=9, wrap=True)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    save(fig, out, "probe_%s_profiles.png" % name)
+    if has_exact and len(times) > 1:
+        peak = max(1e-300, float(np.max(np.abs(p["vx_exact"]))))
+        err = np.sqrt(np.mean((p["vx"] - p["vx_exact"]) ** 2, axis=1)) / peak
+        fig, ax = plt.subplots(figsize=(7.5, 4.2))
+        ax.semilogy(times[1:], np.maximum(err[1:], 1e-12), "o-")
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("L2 error of vx / peak speed (-)")
+        ax.set_title(title(run, "probe '%s': profile error" % name), fontsize=9, wrap=True)
+        ax.grid(True, which="both", alpha=0.3)
+        fig.tight_layout()
+        save(fig, out, "probe_%s_error.png" % name)
+
+
+def plot_point_probe(run, name, out):
+    p = run.probe(name)
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
+    speed = float(np.max(np.hypot(p["vx"], p["vy"])))
+    for ax, col in zip(axes, ("vx", "vy")):
+        for k in range(len(p["x"])):
+            ax.plot(p["time"], p[col][:, k], "o-", ms=3, label="(%.4g, %.4g) m" % (p["x"][k], p["y"][k]))
+        min_span(ax, [float(v) for v in p[col].ravel()], 0.1 * speed, "m/s", col)
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("%s (m/s)" % col)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle(title(run, "probe '%s': velocity at its points" % name), fontsize=10)
+    fig.tight_layout()
+    save(fig, out, "probe_%s_points.png" % name)
+
+
+def plot_flows(run, out):
+    if not run.flows:
+        return
+    fig, ax = plt.subplots(figsize=(7.5, 4.2))
+    for name, t in sorted(run.flows.items()):
+        ax.plot(t["time"], t["flow_rate"], "o-", ms=3, label="probe '%s'" % name)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("flow rate (m^2/s, per unit depth)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(title(run, "flow rate through the line probes"), fontsize=9, wrap=True)
+    fig.tight_layout()
+    save(fig, out, "flow_rates.png")
+
+
+# ---- bodies -----------------------------------------------------------------------------------
 
 def excess_weight_y(case, b):
     """The y force a settling body's hydrodynamic load balances at terminal speed: its weight
@@ -165,123 +264,165 @@ def plot_reference(ax, col, refs):
         path = os.path.join(REFERENCE_DIR, fname)
         if not os.path.exists(path):
             continue
-        ref = read_csv(path)
+        ref = reader.read_csv(path)
         if "body" in ref:
             for rb in sorted(set(int(v) for v in ref["body"])):
-                ii = [i for i, v in enumerate(ref["body"]) if int(v) == rb]
-                ax.plot([ref[xc][i] for i in ii], [ref[yc][i] for i in ii], "o", ms=4, label="%s, body %d" % (label, rb))
+                sel = ref["body"] == rb
+                ax.plot(ref[xc][sel], ref[yc][sel], "o", ms=4, label="%s, body %d" % (label, rb))
         else:
             ax.plot(ref[xc], ref[yc], "ko", ms=4, label=label)
 
 
 def plot_bodies(run, out):
-    cols = read_csv(os.path.join(run, "bodies.csv"))
-    if not cols["time"]:
+    if run.bodies is None or run.bodies.rows == 0:
         return
-    case = read_case(run)
+    case = run.case
     specs = case.get("body", [])
-    bodies = sorted(set(int(b) for b in cols["body"]))
-    names = {b: (specs[b].get("name", "body %d" % b) if b < len(specs) else "body %d" % b) for b in bodies}
+    bodies = sorted(set(int(b) for b in run.bodies["body"]))
+    spec = {b: (specs[b] if b < len(specs) else {}) for b in bodies}
+    names = {b: spec[b].get("name", "body %d" % b) for b in bodies}
+    moving = [b for b in bodies if spec[b].get("motion", "free") != "fixed"]
     refs = REFERENCES.get(case.get("name", ""), [])
-    t_last = max(cols["time"])
-    series = {}
-    for body in bodies:
-        idx = [i for i, bb in enumerate(cols["body"]) if int(bb) == body]
-        series[body] = {k: [cols[k][i] for i in idx] for k in cols}
-    # one panel per quantity, so that each keeps its own scale (y of a migrating cylinder would
-    # be flat next to its x), with the reference curves of that quantity
-    panels = [("x", "x (m)"), ("y", "y (m)"), ("angle", "angle (rad), counter-clockwise"),
-              ("vx", "vx (m/s)"), ("vy", "vy (m/s)"), ("force", "hydrodynamic force (N/m)")]
-    fig, axes = plt.subplots(2, 3, figsize=(14, 7.5))
-    for ax, (col, title) in zip([a for row in axes for a in row], panels):
+    series = {b: run.body(b) for b in bodies}
+    t_last = float(np.max(run.bodies["time"]))
+    sizes = [body_size(spec[b]) for b in moving if body_size(spec[b])]
+    size = min(sizes) if sizes else None
+    speed = max([float(np.max(np.hypot(series[b]["vx"], series[b]["vy"]))) for b in moving] + [0.0])
+    # one panel per quantity, each on its own scale; trajectories only for bodies that move
+    panels = []
+    if moving:
+        panels += [("x", "x (m)", size, "m"), ("y", "y (m)", size, "m"), ("angle", "angle (rad), counter-clockwise", 0.1, "rad"),
+                   ("vx", "vx (m/s)", 0.1 * speed, "m/s"), ("vy", "vy (m/s)", 0.1 * speed, "m/s")]
+    panels.append(("force", "hydrodynamic force (N/m)", None, "N/m"))
+    ncol = 3 if len(panels) > 2 else len(panels)
+    nrow = int(math.ceil(len(panels) / float(ncol)))
+    fig, axes = plt.subplots(nrow, ncol, figsize=(max(8.0, 4.8 * ncol), 3.9 * nrow + 0.8), squeeze=False)
+    flat = [a for row in axes for a in row]
+    for ax, (col, label, span, unit) in zip(flat, panels):
         if col == "force":
             weights = {}
-            for body in bodies:
-                ax.plot(series[body]["time"], series[body]["fx"], label="%s fx" % names[body])
-                ax.plot(series[body]["time"], series[body]["fy"], "--", label="%s fy" % names[body])
-                w = excess_weight_y(case, specs[body]) if body < len(specs) else None
+            for b in bodies:
+                ax.plot(series[b]["time"], series[b]["fx"], label="%s fx" % names[b])
+                ax.plot(series[b]["time"], series[b]["fy"], "--", label="%s fy" % names[b])
+                w = excess_weight_y(case, spec[b])
                 if w is not None:
-                    weights.setdefault(round(w, 12), []).append(names[body])
+                    weights.setdefault(round(w, 12), []).append(names[b])
             for w, who in weights.items():
                 ax.axhline(w, color="0.4", ls=":", lw=1.2,
                            label="weight - buoyancy of %s (fy at terminal speed)" % ", ".join(who))
         else:
-            for k, body in enumerate(bodies):
-                if body < len(specs) and specs[body].get("motion", "free") == "fixed":
-                    continue  # a fixed obstacle only has forces to show
-                ax.plot(series[body]["time"], series[body][col], color="C%d" % k, label=names[body])
+            for k, b in enumerate(moving):
+                ax.plot(series[b]["time"], series[b][col], color="C%d" % k, label=names[b])
             plot_reference(ax, col, refs)
-        if col == "angle" and any(abs(v) > 0 for body in bodies for v in series[body]["omega"]):
+            min_span(ax, [float(v) for b in moving for v in series[b][col]], span, unit, col)
+        if col == "angle" and any(np.any(series[b]["omega"] != 0) for b in moving):
             tw = ax.twinx()
-            for k, body in enumerate(bodies):
-                if body < len(specs) and specs[body].get("motion", "free") == "fixed":
-                    continue
-                tw.plot(series[body]["time"], series[body]["omega"], ":", lw=1, color="C%d" % k,
-                        label="%s omega" % names[body])
+            for k, b in enumerate(moving):
+                tw.plot(series[b]["time"], series[b]["omega"], ":", lw=1, color="C%d" % k, label="%s omega" % names[b])
             tw.set_ylabel("omega (rad/s), dotted")
         # the run's time span: reference points after its end would only squeeze the curves
         if t_last > 0:
             ax.set_xlim(0, t_last * 1.02)
         ax.set_xlabel("t (s)")
-        ax.set_ylabel(title)
+        ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7, framealpha=0.7)
-    fig.suptitle("bodies of '%s'" % (case.get("name", "") or run))
+    for ax in flat[len(panels):]:
+        ax.set_visible(False)
+    fig.suptitle(title(run, "bodies"), fontsize=11)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "bodies.png"), dpi=110)
-    plt.close(fig)
+    save(fig, out, "bodies.png")
+
+
+def plot_coefficients(run, out):
+    c = run.coefficients
+    if c is None or c.rows == 0:
+        return
+    specs = run.case.get("body", [])
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
+    for k, b in enumerate(sorted(set(int(v) for v in c["body"]))):
+        rows = run.coefficient(b)
+        name = specs[b].get("name", "body %d" % b) if b < len(specs) else "body %d" % b
+        axes[0].plot(rows["time"], rows["cd"], color="C%d" % k, label="%s (Re = %.3g)" % (name, rows["re"][-1]))
+        axes[1].plot(rows["time"], rows["cl"], color="C%d" % k, label=name)
+    # a lift far below the drag must not fill its panel
+    cd_max = float(np.max(np.abs(c["cd"])))
+    min_span(axes[1], [float(v) for v in c["cl"]], 0.1 * cd_max, "-", "C_L")
+    for ax, label in zip(axes, ("drag coefficient C_D (-)", "lift coefficient C_L (-)")):
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle(title(run, "coefficients (C = F / (0.5 rho0 U^2 L))"), fontsize=10)
+    fig.tight_layout()
+    save(fig, out, "coefficients.png")
+
+
+# ---- the last snapshot ------------------------------------------------------------------------
+
+def pressure_label(case):
+    """What the snapshot's pressure is: the equation of state's p = p0 + c^2 (rho - rho0), shown
+    as p - p0; without gravity in the fluid it has no hydrostatic part (dynamic pressure)."""
+    fluid = case.get("fluid", {})
+    g = fluid.get("gravity", [0.0, 0.0])
+    if fluid.get("gravity_in_fluid", False) and any(g):
+        return "p - p0 (Pa): gauge pressure, hydrostatic part included"
+    return "p - p0 (Pa): dynamic (gauge) pressure"
 
 
 def plot_snapshot(run, out):
-    pvd = os.path.join(run, "particles.pvd")
-    if not os.path.exists(pvd):
+    snaps = run.snapshots
+    if len(snaps) == 0 or not os.path.exists(snaps.files[-1]):
         return
-    files = [ds.get("file") for ds in ET.parse(pvd).getroot().iter("DataSet")]
-    times = [float(ds.get("timestep")) for ds in ET.parse(pvd).getroot().iter("DataSet")]
-    if not files or not os.path.exists(os.path.join(run, files[-1])):
-        return
-    x, y, arrays = read_vtp(os.path.join(run, files[-1]))
-    fields = [("pressure", arrays["pressure"][0], "p (Pa)"), ("vx", arrays["velocity"][0], "vx (m/s)"),
-              ("vy", arrays["velocity"][1], "vy (m/s)")]
-    width = max(x) - min(x)
-    height = max(y) - min(y)
+    snap = snaps[-1]
+    x, y = snap.points[:, 0], snap.points[:, 1]
+    p0 = run.case.get("fluid", {}).get("p0", 0.0)
+    fields = [("pressure", snap["pressure"] - p0, pressure_label(run.case)),
+              ("vx", snap["velocity"][:, 0], "vx (m/s)"), ("vy", snap["velocity"][:, 1], "vy (m/s)")]
+    width, height = float(np.ptp(x)), float(np.ptp(y))
     aspect = height / width if width > 0 else 1
-    fig, axes = plt.subplots(1, 3, figsize=(12, max(3.0, min(9.0, 4.0 * aspect)) + 0.8))
+    fig, axes = plt.subplots(1, 3, figsize=(14, max(3.0, min(9.0, 4.2 * aspect)) + 1.2))
     size = max(0.5, min(20.0, 20000.0 / max(1, len(x))))
     for ax, (name, vals, label) in zip(axes, fields):
         # colour range from the 1st to the 99th percentile, so that a few outliers (a particle
         # squeezed against a wall, a failing run's last state) do not wash out the field
-        ranked = sorted(vals)
-        lo = ranked[int(0.01 * (len(ranked) - 1))]
-        hi = ranked[int(0.99 * (len(ranked) - 1))]
+        lo, hi = np.percentile(vals, [1, 99])
         if name != "pressure":
             hi = max(abs(lo), abs(hi))
             lo = -hi
         sc = ax.scatter(x, y, c=vals, s=size, cmap="coolwarm" if name != "pressure" else "viridis", linewidths=0,
                         vmin=lo, vmax=hi if hi > lo else lo + 1e-30)
         ax.set_aspect("equal")
-        ax.set_title("%s at t = %.4g s" % (name, times[-1]))
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        ax.set_title("%s at t = %.4g s" % (name, snap.time), fontsize=10)
         fig.colorbar(sc, ax=ax, label=label, shrink=0.8)
+    fig.suptitle(title(run, "particles"), fontsize=11)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "snapshot_fields.png"), dpi=120)
-    plt.close(fig)
+    save(fig, out, "snapshot_fields.png")
 
 
 def main(argv):
     if len(argv) != 2:
         sys.stderr.write("usage: plot_run.py RUN_DIR\n")
         return 2
-    run = argv[1]
-    if not os.path.isdir(run):
-        sys.stderr.write("plot_run.py: '%s' is not a run directory\n" % run)
+    path = argv[1]
+    if not os.path.isdir(path):
+        sys.stderr.write("plot_run.py: '%s' is not a run directory\n" % path)
         return 2
-    out = os.path.join(run, "plots")
+    run = reader.read_run(path)
+    out = os.path.join(path, "plots")
     os.makedirs(out, exist_ok=True)
-    for f in sorted(os.listdir(run)):
-        if f.startswith("probe_") and f.endswith(".csv"):
-            plot_probe(run, f[len("probe_"):-len(".csv")], out)
-    if os.path.exists(os.path.join(run, "bodies.csv")):
-        plot_bodies(run, out)
+    for name in sorted(run.probes):
+        if run.probes[name].rows == 0:
+            continue
+        if probe_spec(run.case, name).get("kind", "line") == "points":
+            plot_point_probe(run, name, out)
+        else:
+            plot_line_probe(run, name, out)
+    plot_flows(run, out)
+    plot_bodies(run, out)
+    plot_coefficients(run, out)
     plot_snapshot(run, out)
     print("plots written to %s" % out)
     return 0

@@ -7,6 +7,8 @@
     run.bodies.units["fx"]               # "N/m", from the file's "# units:" line
     run.body(0)["vy"]                    # the rows of body 0
     run.walls, run.probes["profile"]     # walls.csv, probe_<name>.csv
+    run.flows["profile"]["flow_rate"]    # flow_<name>.csv: the flow rate through a line probe
+    run.coefficient(0)["cd"]             # coefficients.csv (cases with reference velocity and length)
     run.probe("profile")["vx"]           # a probe as (times, points) arrays
     run.snapshots.times                  # particles.pvd: the snapshot times
     snap = run.snapshots[-1]             # a Snapshot, read when asked for
@@ -227,10 +229,12 @@ class Run:
         self.summary = self._json("summary.json")
         self.bodies = self._csv("bodies.csv")
         self.walls = self._csv("walls.csv")
-        self.probes = {}
+        self.coefficients = self._csv("coefficients.csv")
+        self.probes, self.flows = {}, {}
         for f in sorted(os.listdir(self.dir)):
-            if f.startswith("probe_") and f.endswith(".csv"):
-                self.probes[f[len("probe_"):-len(".csv")]] = read_csv(os.path.join(self.dir, f))
+            for prefix, table in (("probe_", self.probes), ("flow_", self.flows)):
+                if f.startswith(prefix) and f.endswith(".csv"):
+                    table[f[len(prefix):-len(".csv")]] = read_csv(os.path.join(self.dir, f))
         self.snapshots = Snapshots(os.path.join(self.dir, "particles.pvd"))
         log = os.path.join(self.dir, "log.txt")
         self.log = open(log).read() if os.path.exists(log) else ""
@@ -265,8 +269,12 @@ class Run:
         """The rows of walls.csv for the wall of case index `index`, a Table."""
         return self.walls.where(self.walls["wall"] == index)
 
+    def coefficient(self, index):
+        """The rows of coefficients.csv (re, re_body, cd, cl, cm) for the body of case index `index`."""
+        return self.coefficients.where(self.coefficients["body"] == index)
+
     def probe(self, name):
-        """A line probe as arrays: time (nt,), x and y (np,), and each other column (nt, np)."""
+        """A probe as arrays: time (nt,), x and y (np,), and each other column (nt, np)."""
         t = self.probes[name]
         times = np.unique(t["time"])
         npts = t.rows // max(1, len(times))

@@ -1001,7 +1001,8 @@ constexpr CrossCheck kChecks[] = {check_domain,           check_magnitudes,     
                                   check_unused_keys,      check_polygons,       check_density,
                                   check_schedules,        check_fixed_bodies,   check_body_sizes,
                                   check_bodies_in_domain, check_body_overlap,   check_walls_clear_of_bodies,
-                                  check_initial_contacts, check_probes,         check_time_steps};
+                                  check_initial_contacts, check_probes,         check_references,
+                                  check_time_steps};
 
 }  // namespace
 

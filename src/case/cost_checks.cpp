@@ -160,39 +160,69 @@ void check_magnitudes(const Case& c, const LoadContext& ctx) {
   }
 }
 
-/// Probes: both ends inside the domain (there is no fluid to interpolate from outside), points
-/// no closer than d0/100 (the interpolation, over a kernel of radius h, cannot tell them apart),
-/// and at most kMaxProbePoints in all (memory and output size: `info` counts them).
+/// Probes: every point inside the domain (there is no fluid to interpolate from outside), the
+/// points of a line no closer than d0/100 (the interpolation, over a kernel of radius h, cannot
+/// tell them apart), and at most kMaxProbePoints in all (memory and output size: `info` counts them).
 void check_probes(const Case& c, const LoadContext& ctx) {
   const real tol = 1e-6 * c.d0;
+  auto inside = [&](Vec2 x) {
+    return x.x >= c.domain_min.x - tol && x.x <= c.domain_max.x + tol && x.y >= c.domain_min.y - tol &&
+           x.y <= c.domain_max.y + tol;
+  };
+  auto outside = [&](const ProbeSpec& p, const std::string& key, const std::string& which, Vec2 x) {
+    return ctx.error(key, fmt::format("probe '{}' {} {} lies outside the domain {} .. {}: there is no fluid to "
+                                      "interpolate from there",
+                                      p.name, which, vec(x), vec(c.domain_min), vec(c.domain_max)));
+  };
   double total = 0;
   for (std::size_t k = 0; k < c.probes.size(); ++k) {
     const ProbeSpec& p = c.probes[k];
     const std::string key = fmt::format("probe[{}].", k);
-    for (const auto& [end, x] : {std::pair{"from", p.from}, std::pair{"to", p.to}}) {
-      const bool in = x.x >= c.domain_min.x - tol && x.x <= c.domain_max.x + tol && x.y >= c.domain_min.y - tol &&
-                      x.y <= c.domain_max.y + tol;
-      if (!in)
-        throw ctx.error(key + end, fmt::format("probe '{}' {} point {} lies outside the domain {} .. {}: there is "
-                                               "no fluid to interpolate from there",
-                                               p.name, end, vec(x), vec(c.domain_min), vec(c.domain_max)));
+    if (p.kind == ProbeKind::Points) {
+      for (std::size_t i = 0; i < p.at.size(); ++i)
+        if (!inside(p.at[i])) throw outside(p, fmt::format("{}at[{}]", key, i), fmt::format("point {}", i), p.at[i]);
+    } else {
+      for (const auto& [end, x] : {std::pair{"from", p.from}, std::pair{"to", p.to}})
+        if (!inside(x)) throw outside(p, key + end, std::string(end) + " point", x);
+      const real length = norm(p.to - p.from);
+      const double most = std::max(2.0, std::floor(kProbePointsPerD0 * length / c.d0 * (1 + 1e-9)) + 1);
+      if (p.points > most)
+        throw ctx.error(key + "points",
+                        fmt::format("probe '{}' has {} points on a {:.3g} m line, {:.3g} m apart: closer than d0/{:g} = "
+                                    "{:.3g} m, which the interpolation (over a radius h = {:.3g} m) cannot tell apart; "
+                                    "use at most {:.0f} points",
+                                    p.name, p.points, length, length / (p.points - 1), kProbePointsPerD0,
+                                    c.d0 / kProbePointsPerD0, c.h(), most));
     }
-    const real length = norm(p.to - p.from);
-    const double most = std::max(2.0, std::floor(kProbePointsPerD0 * length / c.d0 * (1 + 1e-9)) + 1);
-    if (p.points > most)
-      throw ctx.error(key + "points",
-                      fmt::format("probe '{}' has {} points on a {:.3g} m line, {:.3g} m apart: closer than d0/{:g} = "
-                                  "{:.3g} m, which the interpolation (over a radius h = {:.3g} m) cannot tell apart; "
-                                  "use at most {:.0f} points",
-                                  p.name, p.points, length, length / (p.points - 1), kProbePointsPerD0,
-                                  c.d0 / kProbePointsPerD0, c.h(), most));
-    total += p.points;
+    total += static_cast<double>(probe_point_count(p));
     if (total > kMaxProbePoints)
-      throw ctx.error(key + "points",
+      throw ctx.error(key + (p.kind == ProbeKind::Points ? "at" : "points"),
                       fmt::format("the probes up to probe '{}' have {:.0f} points in all, more than the {:.0e} "
                                   "particula accepts (each point is interpolated and written at every probe output)",
                                   p.name, total, kMaxProbePoints));
   }
+}
+
+/// Coefficient references: a body needs both a reference velocity and a length (its own or
+/// [analysis]'s) or neither; half a reference is a mistake, not a request for no coefficients.
+void check_references(const Case& c, const LoadContext& ctx) {
+  const bool any_v = c.reference_velocity.x != 0 || c.reference_velocity.y != 0;
+  for (std::size_t i = 0; i < c.bodies.size(); ++i) {
+    const BodyReference r = body_reference(c, i);
+    const bool has_v = r.velocity.x != 0 || r.velocity.y != 0, has_l = r.length > 0;
+    if (has_v == has_l) continue;
+    const BodySpec& b = c.bodies[i];
+    const bool own = has_v ? (b.reference_velocity.x != 0 || b.reference_velocity.y != 0) : b.reference_length > 0;
+    const std::string given = has_v ? "reference_velocity" : "reference_length";
+    const std::string missing = has_v ? "reference_length" : "reference_velocity";
+    throw ctx.error(own ? fmt::format("body[{}].{}", i, given) : "analysis." + given,
+                    fmt::format("body '{}' has a {} but no {}: the coefficients need both; give body[{}].{} or "
+                                "analysis.{}",
+                                b.name, given, missing, i, missing, missing));
+  }
+  if (c.bodies.empty() && (any_v != (c.reference_length > 0)))
+    throw ctx.error(any_v ? "analysis.reference_velocity" : "analysis.reference_length",
+                    "analysis.reference_velocity and analysis.reference_length go together: give both or neither");
 }
 
 /// Time steps: time.dt_max and the output intervals not absurdly below the stable step (each step

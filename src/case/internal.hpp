@@ -69,6 +69,7 @@ void apply_overrides(toml::table& root, const std::vector<std::string>& override
 /// probes inside the domain and of a sensible size, time steps and output counts bounded.
 void check_magnitudes(const Case& c, const LoadContext& ctx);
 void check_probes(const Case& c, const LoadContext& ctx);
+void check_references(const Case& c, const LoadContext& ctx);
 void check_time_steps(const Case& c, const LoadContext& ctx);
 
 /// Consistency checks between keys (domain, walls, periodic width, bodies, ...); throw CaseError.

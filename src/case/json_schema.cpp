@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <cctype>
+#include <algorithm>
 #include <map>
 
 #include "particula/case/schema.hpp"
@@ -133,7 +134,13 @@ JsonObject used_when_rule(const KeySpec& s) {
   const std::string decider = s.used_when->key.substr(s.used_when->key.rfind('.') + 1);
   JsonObject cond;
   cond.set("properties", JsonObject().set(decider, JsonObject().set("enum", s.used_when->values)));
-  cond.set("required", std::vector<std::string>{decider});
+  // An absent decider takes its default (probe[].kind: "line"): the condition holds without it
+  // when the default is one of the values, and fails without it otherwise.
+  const KeySpec* d = find_key(s.used_when->key);
+  const auto* fallback = d && d->need == Need::Default ? std::get_if<std::string>(&d->default_value) : nullptr;
+  const auto& v = s.used_when->values;
+  if (!fallback || std::find(v.begin(), v.end(), *fallback) == v.end())
+    cond.set("required", std::vector<std::string>{decider});
   JsonObject rule;
   rule.set("if", cond);
   if (s.need == Need::Required) rule.set("then", JsonObject().set("required", std::vector<std::string>{s.leaf()}));

@@ -147,6 +147,66 @@ schedule = [
   [0.5, 0.0, 0.0, 2.0],
 ]
 ```
+
+A fixed cylinder in a channel driven by a body force, with the drag and lift coefficients and the
+Reynolds number of the cylinder (`[analysis]`: coefficients.csv), the flow rate through a line
+probe across the channel (flow_inlet.csv) and a probe at two points (the second on the lower
+wall, where it reads the wall's velocity):
+
+```toml
+name = "cylinder_in_channel"
+
+[domain]
+min = [0.0, 0.0]
+max = [0.02, 0.01]
+periodic = [true, false]
+
+[resolution]
+d0 = 1e-4
+
+[fluid]
+nu = 1e-4
+c = 0.2
+body_force = [0.05, 0.0]
+
+[time]
+end = 1.0
+
+[output]
+interval = 0.01
+
+[analysis]
+reference_velocity = [0.01, 0.0]  # the free stream: drag along +x
+reference_length = 0.002          # the cylinder's diameter
+
+[[wall]]
+from = [0.0, 0.0]
+to = [0.02, 0.0]
+
+[[wall]]
+from = [0.02, 0.01]
+to = [0.0, 0.01]
+
+[[body]]
+name = "cylinder"
+shape = "circle"
+center = [0.01, 0.005]
+radius = 0.001
+motion = "fixed"
+
+[[probe]]
+name = "inlet"
+from = [0.002, 0.0]
+to = [0.002, 0.01]
+points = 41
+interval = 0.05
+
+[[probe]]
+name = "wake"
+kind = "points"
+at = [[0.014, 0.005], [0.014, 0.0]]
+interval = 0.05
+```
 )";
 
 /// Escapes what breaks a markdown table cell ('|') or reads as HTML ('<' outside code spans).

@@ -375,6 +375,17 @@ std::vector<KeySpec> make_schema() {
                  "profile error (start-up channel flows along x between walls at domain.min.y and "
                  "domain.max.y).",
                  &Case::exact),
+      // [analysis]
+      vec2_key("analysis.reference_velocity", "m/s", def(zero, "[0, 0] (none)"),
+               "Free-stream velocity U relative to the bodies, for coefficients.csv: the drag is the hydrodynamic "
+               "force along U, the lift the force 90 degrees counter-clockwise from it, C_D = F_D / (0.5 rho0 "
+               "|U|^2 L), C_L = F_L / (0.5 rho0 |U|^2 L), C_M = torque / (0.5 rho0 |U|^2 L^2), Re = |U| L / nu "
+               "(per unit depth). A body's own body[].reference_velocity replaces it.",
+               field(&Case::reference_velocity)),
+      real_key("analysis.reference_length", "m", def(0.0, "0 (none)"), ge(0),
+               "Reference length L of the coefficients (e.g. a cylinder's diameter). A body's own "
+               "body[].reference_length replaces it.",
+               field(&Case::reference_length)),
       // [collision]
       choice_key("collision.model", {"spring_dashpot", "paper"}, def(std::string{"spring_dashpot"}),
                  "Contact law between solids: a linear spring and dashpot whose stiffness is derived from the "
@@ -421,13 +432,24 @@ std::vector<KeySpec> make_schema() {
       vec2_key("wall[].velocity", "m/s", def(zero), "Sliding velocity; must be parallel to to - from.",
                member(W, &WallSpec::velocity)),
       // [[probe]]
-      string_key("probe[].name", required(), "Name of the probe; it writes `probe_<name>.csv`.",
+      string_key("probe[].name", required(),
+                 "Name of the probe; it writes `probe_<name>.csv` (a line probe also `flow_<name>.csv`).",
                  member(P, &ProbeSpec::name), /*name=*/true, /*unique=*/true),
-      vec2_key("probe[].from", "m", required(), "First point of the probe line.",
-               member(P, &ProbeSpec::from)),
-      vec2_key("probe[].to", "m", required(), "Last point of the probe line.", member(P, &ProbeSpec::to)),
-      int_key("probe[].points", required(), closed(2, 1e6),
-              "Number of equally spaced points, both ends included.", member(P, &ProbeSpec::points)),
+      choice_member("probe[].kind", {"line", "points"}, def(std::string{"line"}),
+                    "A line of equally spaced points (from, to, points), which also writes its flow rate, or a "
+                    "list of points (at).",
+                    P, &ProbeSpec::kind),
+      used_when(vec2_key("probe[].from", "m", required(), "First point of the probe line.",
+                         member(P, &ProbeSpec::from)),
+                "probe[].kind", {"line"}),
+      used_when(vec2_key("probe[].to", "m", required(), "Last point of the probe line.", member(P, &ProbeSpec::to)),
+                "probe[].kind", {"line"}),
+      used_when(int_key("probe[].points", required(), closed(2, 1e6),
+                        "Number of equally spaced points, both ends included.", member(P, &ProbeSpec::points)),
+                "probe[].kind", {"line"}),
+      used_when(vec2_list_key("probe[].at", "m", required(), 1, "The probe's points [[x, y], ...].",
+                              member(P, &ProbeSpec::at)),
+                "probe[].kind", {"points"}),
       real_key("probe[].interval", "s", required(), gt(0), "Time between probe outputs.",
                member(P, &ProbeSpec::interval)),
       // [[body]]
@@ -485,6 +507,13 @@ std::vector<KeySpec> make_schema() {
                           "row held after its time); replaces velocity and omega.",
                           motion_schedule()),
           motion, {"prescribed"}),
+      vec2_key("body[].reference_velocity", "m/s", def(zero, "[0, 0] (analysis.reference_velocity)"),
+               "This body's free-stream velocity U for coefficients.csv (see analysis.reference_velocity), "
+               "e.g. [0, U] for a body settling at speed U in fluid at rest.",
+               member(B, &BodySpec::reference_velocity)),
+      real_key("body[].reference_length", "m", def(0.0, "0 (analysis.reference_length)"), ge(0),
+               "This body's reference length L for coefficients.csv (e.g. its diameter).",
+               member(B, &BodySpec::reference_length)),
   };
 }
 
@@ -525,6 +554,10 @@ std::vector<SectionSpec> make_sections() {
       table_section("output", "What is written to the run directory, and how often."),
       table_section("guard", "Bounds that stop a run that is blowing up."),
       table_section("validation", "Comparison with an exact solution."),
+      table_section("analysis",
+                    "References of the dimensionless coefficients: a body whose reference velocity and length "
+                    "are both known (from this table or its own [[body]] keys) gets rows in coefficients.csv "
+                    "(Re, C_D, C_L, C_M at every output.interval; README, \"What the output files hold\")."),
       table_section("collision",
                     "Contacts between bodies and between bodies and walls: a spring-dashpot law that needs no "
                     "tuning (default), or the paper's repulsion P.38 generalised to the closest-surface "
@@ -538,9 +571,12 @@ std::vector<SectionSpec> make_sections() {
                     "stand on a wall with a flat side); a wall with a velocity slides along itself, so it must run "
                     "along a periodic axis and share no end point with another wall."),
       array_section("probe", &Case::probes,
-                    "Line probes, one [[probe]] table each: fields interpolated along a segment. Checked at load: "
-                    "both ends inside the domain, points at least d0/100 apart (only a probe of length 0 may have "
-                    "2 points at one place), at most 1e6 points over all probes (`info` counts their memory)."),
+                    "Probes, one [[probe]] table each: velocity and pressure interpolated at a line of points or "
+                    "at a list of points, by moving least squares over the fluid and surface particles (exact for "
+                    "quadratic fields: a point on a wall reads the wall's velocity). A line probe also writes its "
+                    "flow rate. Checked at load: every point inside the domain, the points of a line at least "
+                    "d0/100 apart (only a probe of length 0 may have 2 points at one place), at most 1e6 points "
+                    "over all probes (`info` counts their memory)."),
       array_section("body", &Case::bodies,
                     "Rigid bodies, one [[body]] table each: free, fixed or with prescribed motion. The keys "
                     "marked \"for shape\" or \"for motion\" are used by those shapes or motions only, and "

@@ -27,7 +27,7 @@ SizeEstimate estimate_size(const Case& c) {
   // Per particle: ~30 doubles of state and work arrays, plus 36 bytes per neighbour pair
   // (pi (h/d0)^2 neighbours within the kernel support).
   const double neighbours = M_PI * c.h_over_d0 * c.h_over_d0;
-  for (const auto& p : c.probes) e.probe_points += p.points;
+  for (const auto& p : c.probes) e.probe_points += static_cast<double>(probe_point_count(p));
   e.probe_bytes = e.probe_points * kBytesPerProbePoint;
   e.bytes = e.total() * (30 * 8 + 36 * neighbours) + e.probe_bytes;
   return e;

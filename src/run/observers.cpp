@@ -112,13 +112,24 @@ std::vector<std::string> probe_units(const Case& c) {
 }
 }  // namespace
 
+const std::vector<std::string> kFlowColumns{"time", "flow_rate"};
+const std::vector<std::string> kFlowUnits{"s", "m^2/s"};
+
 ProbeWriter::ProbeWriter(const std::filesystem::path& run_dir, const ProbeSpec& spec, const Case& c,
                          io::StopCheck stop)
-    : spec_(spec), case_(c), csv_(run_dir / ("probe_" + spec.name + ".csv"), probe_columns(c), probe_units(c)), stop_(std::move(stop)) {
-  for (int k = 0; k < spec.points; ++k) {
-    const double s = spec.points > 1 ? static_cast<double>(k) / (spec.points - 1) : 0.0;
-    points_.push_back(spec.from + s * (spec.to - spec.from));
-  }
+    : spec_(spec), case_(c), points_(probe_points(spec)),
+      csv_(run_dir / ("probe_" + spec.name + ".csv"), probe_columns(c), probe_units(c)), stop_(std::move(stop)) {
+  if (spec.kind == ProbeKind::Line) flow_.emplace(run_dir / ("flow_" + spec.name + ".csv"), kFlowColumns, kFlowUnits);
+}
+
+double flow_rate_of(Vec2 from, Vec2 to, const std::vector<Vec2>& v) {
+  const real length = norm(to - from);
+  if (v.size() < 2 || !(length > 0)) return 0;
+  const Vec2 t = (to - from) / length, n{t.y, -t.x};
+  const real ds = length / static_cast<real>(v.size() - 1);
+  double q = 0;
+  for (std::size_t k = 0; k + 1 < v.size(); ++k) q += 0.5 * (dot(v[k], n) + dot(v[k + 1], n)) * ds;
+  return q;
 }
 
 namespace {
@@ -150,7 +161,7 @@ std::optional<Failure> ProbeWriter::write(const Solver& s) {
   constexpr std::size_t kChunk = 16384;
   std::vector<double> values;
   values.reserve(np * nc);
-  std::vector<Vec2> chunk;
+  std::vector<Vec2> chunk, velocities;
   double err2 = 0;
   for (std::size_t k0 = 0; k0 < np; k0 += kChunk) {
     poll();
@@ -159,6 +170,7 @@ std::optional<Failure> ProbeWriter::write(const Solver& s) {
     const auto samples = interpolate_at(s.particles(), s.domain(), s.kernel(), chunk);
     for (std::size_t k = k0; k < k1; ++k) {
       const PointSample& a = samples[k - k0];
+      velocities.push_back(a.v);
       values.insert(values.end(), {s.time(), points_[k].x, points_[k].y, a.v.x, a.v.y, a.p});
       if (exact) {
         poll();
@@ -170,7 +182,13 @@ std::optional<Failure> ProbeWriter::write(const Solver& s) {
       if (auto f = non_finite(row, names, fmt::format("probe '{}' (point {})", spec_.name, k), points_[k])) return f;
     }
   }
+  std::vector<double> flow_row;
+  if (flow_) {
+    flow_row = {s.time(), flow_rate_of(spec_.from, spec_.to, velocities)};
+    if (auto f = non_finite(flow_row, kFlowColumns, fmt::format("flow_{}.csv", spec_.name), spec_.from)) return f;
+  }
   csv_.rows(values, stop_);
+  if (flow_) flow_->row(flow_row);
   if (exact) last_error_ = std::sqrt(err2 / points_.size()) / exact_peak_speed(case_);
   return std::nullopt;
 }
@@ -187,11 +205,46 @@ const std::vector<std::string> kBodyUnits{"s",   "-",   "m",   "m",   "rad", "m/
 const std::vector<std::string> kWallUnits{"s", "-", "N/m", "N/m", "N/m", "N/m", "N/m", "N/m"};
 }  // namespace
 
+const std::vector<std::string> kCoefficientColumns{"time", "body", "re", "re_body", "cd", "cl", "cm"};
+const std::vector<std::string> kCoefficientUnits{"s", "-", "-", "-", "-", "-", "-"};
+
+Coefficients body_coefficients(const BodyReference& ref, Vec2 force, double torque, Vec2 body_velocity,
+                               double rho0, double nu) {
+  const real U = norm(ref.velocity), L = ref.length;
+  const Vec2 e = ref.velocity / U, n{-e.y, e.x};
+  const real q = 0.5 * rho0 * U * U * L;  // dynamic pressure times length: a force per unit depth
+  Coefficients c;
+  c.re = U * L / nu;
+  c.re_body = norm(body_velocity) * L / nu;
+  c.cd = dot(force, e) / q;
+  c.cl = dot(force, n) / q;
+  c.cm = torque / (q * L);
+  return c;
+}
+
+bool BodyHistoryWriter::writes_coefficients(const Case& c) {
+  for (std::size_t i = 0; i < c.bodies.size(); ++i)
+    if (body_reference(c, i).complete()) return true;
+  return false;
+}
+
 BodyHistoryWriter::BodyHistoryWriter(const std::filesystem::path& run_dir)
     : csv_(run_dir / "bodies.csv", kBodyColumns, kBodyUnits), walls_(run_dir / "walls.csv", kWallColumns, kWallUnits) {}
 
+BodyHistoryWriter::BodyHistoryWriter(const std::filesystem::path& run_dir, const Case& c)
+    : BodyHistoryWriter(run_dir) {
+  if (!writes_coefficients(c)) return;
+  coefficients_.emplace(run_dir / "coefficients.csv", kCoefficientColumns, kCoefficientUnits);
+  for (std::size_t i = 0; i < c.bodies.size(); ++i) {
+    const BodyReference r = body_reference(c, i);
+    references_.push_back(r.complete() ? std::optional<BodyReference>(r) : std::nullopt);
+  }
+  rho0_ = c.rho0;
+  nu_ = c.nu;
+}
+
 std::optional<Failure> BodyHistoryWriter::write(const Solver& s) {
-  std::vector<std::vector<double>> bodies, walls;
+  std::vector<std::vector<double>> bodies, walls, coefficients;
   int wall = 0;
   for (const RigidGroup& g : s.groups()) {
     const Vec2 f = g.force_pressure + g.force_viscous;
@@ -207,9 +260,17 @@ std::optional<Failure> BodyHistoryWriter::write(const Solver& s) {
     const std::string where = fmt::format("{} of {} '{}'", is_wall ? "walls.csv" : "bodies.csv",
                                           is_wall ? "wall" : "body", g.name);
     if (auto bad = non_finite(rows.back(), is_wall ? kWallColumns : kBodyColumns, where, g.pos)) return bad;
+    const auto b = static_cast<std::size_t>(g.body);
+    if (is_wall || !coefficients_ || b >= references_.size() || !references_[b]) continue;
+    const Coefficients k = body_coefficients(*references_[b], f, g.torque, g.vel, rho0_, nu_);
+    coefficients.push_back({s.time(), static_cast<double>(g.body), k.re, k.re_body, k.cd, k.cl, k.cm});
+    if (auto bad = non_finite(coefficients.back(), kCoefficientColumns,
+                              fmt::format("coefficients.csv of body '{}'", g.name), g.pos))
+      return bad;
   }
   for (const auto& row : bodies) csv_.row(row);
   for (const auto& row : walls) walls_.row(row);
+  for (const auto& row : coefficients) coefficients_->row(row);
   return std::nullopt;
 }
 

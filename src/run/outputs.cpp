@@ -130,7 +130,7 @@ void RunOutputs::add(std::string key, real interval, std::function<std::optional
 }
 
 RunOutputs::RunOutputs(const fs::path& dir, const Case& c, io::StopCheck stop) {
-  bodies_ = std::make_unique<BodyHistoryWriter>(dir);
+  bodies_ = std::make_unique<BodyHistoryWriter>(dir, c);
   add("bodies", c.output_interval, [this](const Solver& s) { return bodies_->write(s); });
   for (const auto& p : c.probes) {
     probes_.push_back(std::make_unique<ProbeWriter>(dir, p, c, stop));
@@ -159,26 +159,31 @@ RunOutputs::RunOutputs(const fs::path& dir, const Case& c, const std::vector<Out
     return -std::numeric_limits<real>::infinity();
   };
 
-  bodies_ = std::make_unique<BodyHistoryWriter>(scratch_);
-  csv_relays_.push_back(std::make_unique<CsvRelay>(scratch_ / "bodies.csv", dir / "bodies.csv", mark("bodies")));
-  CsvRelay* body_relay = csv_relays_.back().get();
-  csv_relays_.push_back(std::make_unique<CsvRelay>(scratch_ / "walls.csv", dir / "walls.csv", mark("bodies")));
-  CsvRelay* wall_relay = csv_relays_.back().get();
-  add("bodies", c.output_interval, [this, body_relay, wall_relay](const Solver& s) {
+  bodies_ = std::make_unique<BodyHistoryWriter>(scratch_, c);
+  std::vector<CsvRelay*> body_relays;  // bodies.csv, walls.csv and coefficients.csv: one stream
+  for (const char* file : {"bodies.csv", "walls.csv", "coefficients.csv"}) {
+    if (file == std::string("coefficients.csv") && !BodyHistoryWriter::writes_coefficients(c)) continue;
+    csv_relays_.push_back(std::make_unique<CsvRelay>(scratch_ / file, dir / file, mark("bodies")));
+    body_relays.push_back(csv_relays_.back().get());
+  }
+  add("bodies", c.output_interval, [this, body_relays](const Solver& s) {
     if (auto f = bodies_->write(s)) return f;
-    body_relay->pump();
-    wall_relay->pump();
+    for (CsvRelay* r : body_relays) r->pump();
     return std::optional<Failure>();
   });
   for (const auto& p : c.probes) {
-    const std::string file = "probe_" + p.name + ".csv";
     probes_.push_back(std::make_unique<ProbeWriter>(scratch_, p, c, stop));
-    csv_relays_.push_back(std::make_unique<CsvRelay>(scratch_ / file, dir / file, mark("probe:" + p.name)));
+    std::vector<CsvRelay*> relays;  // probe_<name>.csv and, for a line, flow_<name>.csv
+    std::vector<std::string> files{"probe_" + p.name + ".csv"};
+    if (p.kind == ProbeKind::Line) files.push_back("flow_" + p.name + ".csv");
+    for (const std::string& file : files) {
+      csv_relays_.push_back(std::make_unique<CsvRelay>(scratch_ / file, dir / file, mark("probe:" + p.name)));
+      relays.push_back(csv_relays_.back().get());
+    }
     ProbeWriter* w = probes_.back().get();
-    CsvRelay* relay = csv_relays_.back().get();
-    add("probe:" + p.name, p.interval, [w, relay](const Solver& s) {
+    add("probe:" + p.name, p.interval, [w, relays](const Solver& s) {
       if (auto f = w->write(s)) return f;
-      relay->pump();
+      for (CsvRelay* r : relays) r->pump();
       return std::optional<Failure>();
     });
   }

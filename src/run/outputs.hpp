@@ -32,7 +32,8 @@ class SnapshotRelay;
 /// a run resumed from a checkpoint taken then writes that stream's due output first.
 class RunOutputs {
  public:
-  /// A fresh run: creates bodies.csv, probe_<name>.csv and particles.pvd in `dir`.
+  /// A fresh run: creates bodies.csv, walls.csv, coefficients.csv (when bodies have references),
+  /// probe_<name>.csv, flow_<name>.csv (line probes) and particles.pvd in `dir`.
   RunOutputs(const std::filesystem::path& dir, const Case& c, io::StopCheck stop = {});
   /// A resumed run at `t0`: keeps each existing stream up to its mark (rows after it are
   /// dropped: CsvWriter::append, PvdIndex::drop_after) and appends to it. Throws io::IoError

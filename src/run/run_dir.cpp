@@ -33,9 +33,11 @@ bool all_digits(std::string_view s) {
 
 /// A file name particula writes at the top of a run directory (or of its .resume scratch).
 bool top_file(std::string_view name) {
-  for (const char* known : {kRunMarker, "case.toml", "summary.json", "log.txt", "bodies.csv", "walls.csv", "particles.pvd"})
+  for (const char* known : {kRunMarker, "case.toml", "summary.json", "log.txt", "bodies.csv", "walls.csv",
+                            "coefficients.csv", "particles.pvd"})
     if (name == known) return true;
-  return starts_with(name, "probe_") && ends_with(name, ".csv") && name.size() > 10;
+  return (starts_with(name, "probe_") && ends_with(name, ".csv") && name.size() > 10) ||
+         (starts_with(name, "flow_") && ends_with(name, ".csv") && name.size() > 9);
 }
 
 std::string hex(std::uint64_t v) { return fmt::format("{:016x}", v); }

@@ -321,12 +321,18 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
                         100 * *particle_error));
   for (const auto& p : out.probes())
     if (auto e = p->last_error())
-      rep.say(fmt::format("probe '{}' (Shepard-interpolated): L2 error of vx {:.4f} % of the peak speed at t = {:.6g} s",
+      rep.say(fmt::format("probe '{}' (MLS-interpolated): L2 error of vx {:.4f} % of the peak speed at t = {:.6g} s",
                           p->spec().name, 100 * *e, solver.time()));
-  if (exit_code == 0 && plots) {
+  // Plots of every run that has data to show: completed, failed (up to the failure: where it went
+  // wrong is what one wants to see) and interrupted. An interrupted run has stopped and saved its
+  // state, so its stop request is cleared: a second Ctrl-C stops the plotting.
+  if (plots && (exit_code == 0 || exit_code == 3 || exit_code == 130)) {
+    if (exit_code == 130) g_signal.store(0);
     switch (draw_plots(s.dir, s.dir / "log.txt", stop_requested)) {
       case PlotOutcome::Drawn:
-        if (!rep.quiet) rep.say(fmt::format("plots in {}", (s.dir / "plots").string()));
+        if (!rep.quiet || exit_code != 0)
+          rep.say(fmt::format("plots{} in {}", exit_code == 3 ? " up to the failure" : exit_code == 130 ? " up to the interruption" : "",
+                              (s.dir / "plots").string()));
         break;
       case PlotOutcome::NoMatplotlib:
       case PlotOutcome::NoScript:

@@ -31,14 +31,36 @@ struct WallSpec {
   Vec2 velocity;  // must be tangential (parallel to to - from)
 };
 
-/// A line probe: Shepard-normalized SPH interpolation of fields at `points` equally spaced
-/// points from `from` to `to` (both ends included), written every `interval` seconds.
+/// A probe is a line (`points` equally spaced points from `from` to `to`, both ends included)
+/// or a list of points (`at`).
+enum class ProbeKind { Line, Points };
+
+/// A probe: fields interpolated (moving least squares, src/solver/interpolation.cpp) at its
+/// points, written every `interval` seconds; a line probe also writes its flow rate.
 struct ProbeSpec {
   std::string name;
-  Vec2 from, to;
+  Vec2 from, to;  // kind Line
   int points = 2;
   real interval = 0;
+  ProbeKind kind = ProbeKind::Line;
+  std::vector<Vec2> at;  // kind Points
 };
+
+/// The points of a probe: equally spaced along a line probe, or its `at` list.
+inline std::vector<Vec2> probe_points(const ProbeSpec& p) {
+  if (p.kind == ProbeKind::Points) return p.at;
+  std::vector<Vec2> pts;
+  for (int k = 0; k < p.points; ++k) {
+    const real s = p.points > 1 ? static_cast<real>(k) / (p.points - 1) : 0.0;
+    pts.push_back(p.from + s * (p.to - p.from));
+  }
+  return pts;
+}
+
+/// The number of points of a probe.
+inline std::size_t probe_point_count(const ProbeSpec& p) {
+  return p.kind == ProbeKind::Points ? p.at.size() : static_cast<std::size_t>(p.points);
+}
 
 enum class BodyShape { Circle, Ellipse, Polygon, HalfDisc };
 enum class BodyMotion { Free, Fixed, Prescribed };
@@ -65,6 +87,8 @@ struct BodySpec {
   Vec2 velocity;               // initial velocity (free) or constant prescribed velocity
   real omega = 0;              // initial / constant prescribed angular velocity (rad/s)
   std::vector<MotionKnot> schedule;  // prescribed: piecewise-linear in time (overrides velocity/omega)
+  Vec2 reference_velocity;     // coefficients.csv: free stream relative to the body (0 = [analysis]'s)
+  real reference_length = 0;   // coefficients.csv: length in the coefficients (0 = [analysis]'s)
 };
 
 struct Case {
@@ -126,6 +150,10 @@ struct Case {
   // [validation]
   ExactSolution exact = ExactSolution::None;
 
+  // [analysis]: references of the dimensionless coefficients (coefficients.csv); 0 = none
+  Vec2 reference_velocity;
+  real reference_length = 0;
+
   // [collision]
   ContactModel collision_model = ContactModel::SpringDashpot;
   real collision_stiffness = 0;  // spring_dashpot: k_n (N/m^2), 0 = derived; paper: k of P.38, 0 = off
@@ -150,6 +178,22 @@ struct Case {
   /// Whether solids interact at all (the paper's force is off without a stiffness).
   bool contacts_active() const { return collision_model != ContactModel::Paper || collision_stiffness > 0; }
 };
+
+/// The reference of a body's coefficients: its own velocity and length where given, else the
+/// [analysis] ones. `velocity` is the free stream relative to the body: the drag is the force
+/// along it, the lift the force 90 degrees counter-clockwise from it.
+struct BodyReference {
+  Vec2 velocity;
+  real length = 0;
+  bool complete() const { return length > 0 && (velocity.x != 0 || velocity.y != 0); }
+};
+
+inline BodyReference body_reference(const Case& c, std::size_t body) {
+  const BodySpec& b = c.bodies.at(body);
+  const bool own_v = b.reference_velocity.x != 0 || b.reference_velocity.y != 0;
+  return {own_v ? b.reference_velocity : c.reference_velocity,
+          b.reference_length > 0 ? b.reference_length : c.reference_length};
+}
 
 /// a - b through the nearest periodic image along the case's periodic axes (the minimum-image
 /// convention of Domain::separation, for code that has a Case and no Domain).

@@ -37,9 +37,10 @@ class SnapshotWriter {
   io::StopCheck stop_;
 };
 
-/// One line probe: probe_<name>.csv with time,x,y,vx,vy,p and, when the case declares an
-/// exact solution, vx_exact (units in the file's "# units:" line); also tracks the profile error against it. The rows of one time
-/// are written together, or (io::Cancelled) not at all.
+/// One probe: probe_<name>.csv with time,x,y,vx,vy,p and, when the case declares an exact
+/// solution, vx_exact (units in the file's "# units:" line), one row per point; a line probe also
+/// writes flow_<name>.csv, its flow rate (flow_rate_of). Tracks the profile error against the
+/// exact solution. The rows of one time are written together, or (io::Cancelled) not at all.
 class ProbeWriter {
  public:
   ProbeWriter(const std::filesystem::path& run_dir, const ProbeSpec& spec, const Case& c, io::StopCheck stop = {});
@@ -57,23 +58,49 @@ class ProbeWriter {
   const Case& case_;
   std::vector<Vec2> points_;
   io::CsvWriter csv_;
+  std::optional<io::CsvWriter> flow_;  // line probes: flow_<name>.csv
   std::optional<double> last_error_;
   io::StopCheck stop_;
 };
+
+/// The flow rate through a line from `from` to `to` sampled at equally spaced points (both
+/// ends included) with velocities `v`: Q = integral of u . n ds by the trapezoidal rule, n the
+/// unit normal to the right of the line walking from `from` to `to` (n = (t_y, -t_x), t the unit
+/// tangent: a line from bottom to top counts flow in +x). m^2/s in 2D (per unit depth).
+double flow_rate_of(Vec2 from, Vec2 to, const std::vector<Vec2>& v);
+
+/// The dimensionless coefficients of a body with reference velocity U (free stream relative to
+/// the body) and length L, from its hydrodynamic force F and torque T (per unit depth):
+///   Re = |U| L / nu, Re_body = |v_body| L / nu,
+///   C_D = F . e / q, C_L = F . n / q, C_M = T / (q L),  q = 0.5 rho0 |U|^2 L,
+/// e = U / |U| and n = e turned 90 degrees counter-clockwise.
+struct Coefficients {
+  double re = 0, re_body = 0, cd = 0, cl = 0, cm = 0;
+};
+Coefficients body_coefficients(const BodyReference& ref, Vec2 force, double torque, Vec2 body_velocity,
+                               double rho0, double nu);
 
 /// bodies.csv: one row per body per output, columns of design.md (f = hydrodynamic force,
 /// pressure part fp + viscous part fv; fc = collision force, P.38), and walls.csv: the
 /// hydrodynamic force on each wall segment (e.g. the wall shear of a Couette flow). Bodies and
 /// walls by their case index; units (forces per unit depth) in each file's "# units:" line.
+/// With a case whose bodies have references (analysis.*, body[].reference_*), also
+/// coefficients.csv: time,body,re,re_body,cd,cl,cm for those bodies (body_coefficients).
 class BodyHistoryWriter {
  public:
   explicit BodyHistoryWriter(const std::filesystem::path& run_dir);
+  BodyHistoryWriter(const std::filesystem::path& run_dir, const Case& c);
   /// Writes one row per body and wall; writes nothing and returns the failure when a value is
   /// not finite.
   std::optional<Failure> write(const Solver& s);
+  /// Whether the case makes coefficients.csv (some body has a complete reference).
+  static bool writes_coefficients(const Case& c);
 
  private:
   io::CsvWriter csv_, walls_;
+  std::optional<io::CsvWriter> coefficients_;
+  std::vector<std::optional<BodyReference>> references_;  // per case body index
+  double rho0_ = 0, nu_ = 0;
 };
 
 /// The exact solution the case declares, evaluated at (y, t); nullopt when it has none.
