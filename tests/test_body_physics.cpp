@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 #include "particula/case/case.hpp"
 #include "particula/case/load.hpp"
@@ -102,26 +103,39 @@ Case periodic_array(real d0) {
 
 }  // namespace
 
+// The paper's surface sum (P.26-P.27) converges at first order from below; the band momentum
+// balance (numerics.force = momentum, the default) is within 0.1 % of the force balance already
+// at 10 particles across (docs/validation.md, "Drag convergence").
 TEST(BodyPhysics, DragOnAFixedCylinderConvergesWithResolution) {
   const real balance = 1000 * kF * (kL * kL - M_PI * kR * kR);
-  std::vector<real> drag;
-  for (real d0 : {2.5e-4, 2.5e-4 / std::sqrt(2.0), 1.25e-4}) {  // 10, 14 and 20 particles across
-    Solver s = make_solver(periodic_array(d0));
-    advance_to(s, 0.064);
-    const real d_before = body(s).force_pressure.x + body(s).force_viscous.x;
-    advance_to(s, 0.08);
-    const RigidGroup& b = body(s);
-    drag.push_back(b.force_pressure.x + b.force_viscous.x);
-    std::printf("d0 = %.4g m: drag %.6g N/m (pressure %.4g, viscous %.4g) = %.4f x rho F (L^2 - pi R^2); "
-                "%+.2g %% since t = 0.064 s; %lld steps\n",
-                d0, drag.back(), b.force_pressure.x, b.force_viscous.x, drag.back() / balance,
-                100 * (drag.back() / d_before - 1), static_cast<long long>(s.step_count()));
-    EXPECT_NEAR(drag.back() / d_before, 1.0, 0.005) << "steady at t = 0.08 s";
-    EXPECT_NEAR(b.force_pressure.y + b.force_viscous.y, 0.0, 0.01 * balance) << "no lift on a symmetric array";
+  for (ForceModel force : {ForceModel::Momentum, ForceModel::Paper}) {
+    const char* name = force == ForceModel::Momentum ? "momentum" : "paper";
+    std::vector<real> drag;
+    for (real d0 : {2.5e-4, 2.5e-4 / std::sqrt(2.0), 1.25e-4}) {  // 10, 14 and 20 particles across
+      Case c = periodic_array(d0);
+      c.force = force;
+      Solver s = make_solver(c);
+      advance_to(s, 0.064);
+      const real d_before = body(s).force_pressure.x + body(s).force_viscous.x;
+      advance_to(s, 0.08);
+      const RigidGroup& b = body(s);
+      drag.push_back(b.force_pressure.x + b.force_viscous.x);
+      std::printf("%s, d0 = %.4g m: drag %.6g N/m (pressure %.4g, viscous %.4g) = %.5f x rho F (L^2 - pi R^2); "
+                  "%+.2g %% since t = 0.064 s; %lld steps\n",
+                  name, d0, drag.back(), b.force_pressure.x, b.force_viscous.x, drag.back() / balance,
+                  100 * (drag.back() / d_before - 1), static_cast<long long>(s.step_count()));
+      EXPECT_NEAR(drag.back() / d_before, 1.0, 0.005) << "steady at t = 0.08 s";
+      EXPECT_NEAR(b.force_pressure.y + b.force_viscous.y, 0.0, 0.01 * balance) << "no lift on a symmetric array";
+    }
+    if (force == ForceModel::Momentum) {
+      // 0.9998, 1.0005, 0.9996 measured (the flow's own drift over the last 0.016 s is 0.05 %)
+      for (std::size_t k = 0; k < drag.size(); ++k) EXPECT_NEAR(drag[k] / balance, 1.0, 1e-3) << name << " level " << k;
+      continue;
+    }
+    // 0.945, 0.960, 0.970 of the force balance measured: first order in d0
+    for (std::size_t k = 0; k < drag.size(); ++k) EXPECT_NEAR(drag[k] / balance, 1.0, 0.07) << name << " level " << k;
+    EXPECT_LT(std::fabs(drag[2] - drag[1]), std::fabs(drag[1] - drag[0])) << "converges";
+    EXPECT_LT(std::fabs(drag[2] - balance), std::fabs(drag[1] - balance));
+    EXPECT_LT(std::fabs(drag[1] - balance), std::fabs(drag[0] - balance));
   }
-  // 0.945, 0.960, 0.970 of the force balance measured: first order in d0
-  for (std::size_t k = 0; k < drag.size(); ++k) EXPECT_NEAR(drag[k] / balance, 1.0, 0.07) << "level " << k;
-  EXPECT_LT(std::fabs(drag[2] - drag[1]), std::fabs(drag[1] - drag[0])) << "converges";
-  EXPECT_LT(std::fabs(drag[2] - balance), std::fabs(drag[1] - balance));
-  EXPECT_LT(std::fabs(drag[1] - balance), std::fabs(drag[0] - balance));
 }

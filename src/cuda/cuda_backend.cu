@@ -437,6 +437,54 @@ class CudaBackend final : public DeviceBackend {
     loads_.download(out);
   }
 
+  void download_positions(std::vector<Vec2>& x) override { x_.download(x); }
+
+  void set_load_band(const std::vector<BandEntry>& band) override { band_.upload(band); }
+
+  /// The constants of `scalars` with the device's arrays of the current stage.
+  LoadArrays device_load_arrays(const LoadArrays& scalars) {
+    LoadArrays a = scalars;
+    a.x = x_.data();
+    a.m = m_.data();
+    a.rho = rho_.data();
+    a.p = p_.data();
+    a.grad_v = gradV_.data();
+    a.lap_v = lapV_.data();
+    a.grad_p_over_rho = G_.data();
+    a.group_pos = group_pos_.data();
+    a.group_level = group_level_.data();
+    return a;
+  }
+
+  void band_levels(const LoadArrays& scalars, std::vector<Vec2>& num_den) override {
+    const LoadArrays a = device_load_arrays(scalars);
+    const std::size_t ne = band_.size();
+    band_fp_.resize(ne);
+    const BandEntry* band = band_.data();
+    Vec2* out = band_fp_.data();
+    each(0, ne, [=] __device__(std::size_t e) { band_entry_level(a, band[e], out[e].x, out[e].y); });
+    band_fp_.download(num_den);
+  }
+
+  void band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos, const std::vector<real>& group_level,
+                  std::vector<Vec2>& fp, std::vector<Vec2>& fv, std::vector<real>& torque) override {
+    group_pos_.upload(group_pos);
+    group_level_.upload(group_level);
+    const LoadArrays a = device_load_arrays(scalars);
+    const std::size_t ne = band_.size();
+    band_fp_.resize(ne);
+    band_fv_.resize(ne);
+    band_torque_.resize(ne);
+    const BandEntry* band = band_.data();
+    Vec2* out_fp = band_fp_.data();
+    Vec2* out_fv = band_fv_.data();
+    real* out_t = band_torque_.data();
+    each(0, ne, [=] __device__(std::size_t e) { band_entry_load(a, band[e], out_fp[e], out_fv[e], out_t[e]); });
+    band_fp_.download(fp);
+    band_fv_.download(fv);
+    band_torque_.download(torque);
+  }
+
   void surface_motion(const std::vector<GroupMotion>& motions, bool place) override {
     if (motions.empty()) return;
     motions_.upload(motions);
@@ -618,6 +666,10 @@ class CudaBackend final : public DeviceBackend {
   std::vector<GroupRange> ranges_host_;
   DArray<GroupRange> ranges_;
   DArray<GroupLoads> loads_;
+  // band momentum loads (numerics.force = momentum): the step's entries, per-entry loads
+  DArray<BandEntry> band_;
+  DArray<Vec2> group_pos_, band_fp_, band_fv_;
+  DArray<real> band_torque_, group_level_;
   DArray<GroupMotion> motions_;
 };
 

@@ -235,6 +235,31 @@ Vec2 Shape::closest_normal(Vec2 p) const {
   }
 }
 
+void Shape::distance_and_gradient(Vec2 p, real& d, Vec2& n) const {
+  if (kind_ == ShapeKind::Circle) {
+    d = norm(p) - a_;
+    n = unit(p);
+    return;
+  }
+  const Vec2 q = closest_point(p);
+  bool inside = false;
+  switch (kind_) {
+    case ShapeKind::Ellipse: inside = (p.x * p.x) / (a_ * a_) + (p.y * p.y) / (b_ * b_) < 1; break;
+    case ShapeKind::Polygon: inside = inside_polygon(p, verts_); break;
+    case ShapeKind::HalfDisc: {
+      const Vec2 r = p - Vec2{-centroid_offset_.x, 0};
+      inside = r.x > 0 && norm(r) < a_;
+      break;
+    }
+    default: break;
+  }
+  const real dist = norm(p - q);
+  d = inside ? -dist : dist;
+  if (kind_ == ShapeKind::Ellipse) n = ellipse_normal(a_, b_, q);
+  else if (dist > 1e-12 * bound_) n = unit(inside ? q - p : p - q);
+  else n = unit(p);  // on the surface: the radial direction
+}
+
 std::vector<SurfaceSample> Shape::sample_surface(real d0) const {
   std::vector<SurfaceSample> out;
   switch (kind_) {

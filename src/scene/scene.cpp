@@ -29,6 +29,7 @@ PhysicsParams physics_params(const Case& c) {
   p.fatehi_manzari = c.laplacian == LaplacianScheme::FatehiManzari;
   p.single_layer = c.boundary == BoundaryModel::SingleLayer;
   p.kernel_normals = c.normals == NormalModel::Kernel;
+  p.momentum_force = c.force == ForceModel::Momentum;
   p.rhie_chow_factor = c.rhie_chow_factor;
   p.shifting_beta = c.shifting_beta;
   p.odd_even_damping = c.odd_even_damping;
@@ -228,6 +229,52 @@ real body_distance(Vec2 x, const PhysicsParams& prm, const std::vector<Vec2>& po
   return d;
 }
 
+/// A lattice point removed within d0/2 of a body whose cell still holds fluid.
+struct BandCell {
+  int ix = 0, iy = 0;
+  real fraction = 0;  // of the cell outside every body
+};
+
+/// Fraction of the lattice cell of size dx x dy centred at x that lies outside every body,
+/// from the signed distance `gap` (negative inside a body): 1 or 0 for cells clear of every
+/// surface, else the fraction of 16 x 16 sample points outside (error below 1 % of a cell).
+template <class Gap>
+real cell_fluid_fraction(Vec2 x, real dx, real dy, const Gap& gap) {
+  const real reach = 0.5 * std::sqrt(dx * dx + dy * dy);
+  const real g = gap(x);
+  if (g >= reach) return 1;
+  if (g <= -reach) return 0;
+  constexpr int n = 16;
+  int outside = 0;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      const Vec2 s{x.x + ((a + 0.5) / n - 0.5) * dx, x.y + ((b + 0.5) / n - 0.5) * dy};
+      if (gap(s) > 0) ++outside;
+    }
+  return static_cast<real>(outside) / (n * n);
+}
+
+/// The kept lattice point nearest to lattice point (ix, iy) within two cells (first in lattice
+/// order among equals; across periodic sides), or -1 when there is none.
+std::int64_t nearest_kept(const std::vector<std::int64_t>& kept, int nx, int ny, const Domain& dom, int ix, int iy) {
+  std::int64_t best = -1;
+  int best_d2 = 1 << 30;
+  for (int dy = -2; dy <= 2; ++dy)
+    for (int dx = -2; dx <= 2; ++dx) {
+      int jx = ix + dx, jy = iy + dy;
+      if (dom.periodic_x) jx = (jx + nx) % nx;
+      if (dom.periodic_y) jy = (jy + ny) % ny;
+      if (jx < 0 || jx >= nx || jy < 0 || jy >= ny) continue;
+      const std::int64_t k = kept[static_cast<std::size_t>(jy) * nx + jx];
+      const int d2 = dx * dx + dy * dy;
+      if (k >= 0 && d2 < best_d2) {
+        best = k;
+        best_d2 = d2;
+      }
+    }
+  return best;
+}
+
 }  // namespace
 
 Scene build_scene(const Case& c) {
@@ -374,6 +421,11 @@ Scene build_scene(const Case& c) {
   sc.dy = L.y / ny;
   SplitMix64 rng(c.seed);
   std::vector<Vec2> fx;
+  std::vector<real> farea;  // fluid area each fluid particle stands for (its mass / rho)
+  std::vector<std::int64_t> kept(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), -1);
+  std::vector<BandCell> band;  // lattice points removed near a body whose cell holds fluid
+  const bool exact_fill = c.force == ForceModel::Momentum && !c.bodies.empty();
+  auto body_gap = [&](Vec2 x) { return body_distance(x, sc.params, body_pos, body_angle, dom); };
   for (int iy = 0; iy < ny; ++iy)
     for (int ix = 0; ix < nx; ++ix) {
       const Vec2 x{dom.lo.x + (ix + 0.5) * sc.dx, dom.lo.y + (iy + 0.5) * sc.dy};
@@ -382,10 +434,25 @@ Scene build_scene(const Case& c) {
       // wall lying on the box edge stays).
       for (const auto& ws : c.walls)
         if (segment_distance(x, ws.from, ws.to) < 0.5 * d0 * (1 - 1e-9)) keep = false;
-      if (!keep || near_body(x)) continue;
+      const real fraction = exact_fill ? cell_fluid_fraction(x, sc.dx, sc.dy, body_gap) : real(1);
+      if (keep && near_body(x)) {
+        if (exact_fill && fraction > 0) band.push_back({ix, iy, fraction});
+        continue;
+      }
+      if (!keep) continue;
+      kept[static_cast<std::size_t>(iy) * nx + ix] = static_cast<std::int64_t>(fx.size());
+      farea.push_back(fraction * sc.dx * sc.dy);
       const real px = rng.symmetric(), py = rng.symmetric();
       fx.push_back(dom.wrap(x + (c.perturbation * d0) * Vec2{px, py}));
     }
+  // The fluid in the cells of lattice points removed beside a body goes to the nearest kept
+  // point, so that the fluid masses fill the region outside the bodies exactly (the lattice
+  // alone leaves a band of mean width d0/2 round a curved surface without fluid: 1.4-2.9 % of
+  // the fluid mass of a cylinder array at 10-20 particles across, and as much momentum input).
+  for (const BandCell& bc : band) {
+    const std::int64_t k = nearest_kept(kept, nx, ny, dom, bc.ix, bc.iy);
+    if (k >= 0) farea[static_cast<std::size_t>(k)] += bc.fraction * sc.dx * sc.dy;
+  }
 
   const std::size_t nb = bx.size(), n = nb + fx.size();
   P.resize(n);
@@ -439,7 +506,7 @@ Scene build_scene(const Case& c) {
     }
     P.p[i] = p;
     P.rho[i] = density_from_pressure(p, c.rho0, c.c, c.p0);
-    P.m[i] = P.rho[i] * sc.dx * sc.dy;
+    P.m[i] = P.rho[i] * farea[k];
   }
   for (std::size_t i = 0; i < n; ++i) P.id[i] = static_cast<std::int64_t>(i);
   return sc;

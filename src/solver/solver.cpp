@@ -378,6 +378,10 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   } else {
     refresh_geometry();
   }
+  if (prm_.momentum_force) {
+    PhaseTimer timer(times_.bodies);
+    build_load_band();
+  }
   {
     PhaseTimer timer(times_.bodies);
     if (auto f = collisions()) return f;

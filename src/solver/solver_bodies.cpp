@@ -1,5 +1,5 @@
 // The rigid-body side of Solver: group poses and motions, surface placement and kinematics,
-// loads (P.26-P.27), the body stages of the predictor-corrector and the contacts.
+// the body stages of the predictor-corrector and the contacts (the loads: solver_loads.cpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -48,34 +48,6 @@ void Solver::set_boundary_kinematics() {
   for (const auto& g : groups_) {
     const GroupMotion m = group_motion(g);
     for (std::size_t i = g.first; i < g.first + g.count; ++i) surface_kinematics(m, P_.local[i], P_.v[i], P_.acc[i]);
-  }
-}
-
-void Solver::group_loads() {
-  const real mu = prm_.nu * prm_.rho0;
-  if (dev_) {
-    dev_->group_loads(groups_, mu, loads_);
-    for (std::size_t k = 0; k < groups_.size(); ++k) {
-      groups_[k].force_pressure = loads_[k].force_pressure;
-      groups_[k].force_viscous = loads_[k].force_viscous;
-      groups_[k].torque = loads_[k].torque;
-    }
-    return;
-  }
-  for (auto& g : groups_) {
-    Vec2 fp, fv;
-    real torque = 0;
-    for (std::size_t i = g.first; i < g.first + g.count; ++i) {
-      if (P_.kind[i] != Kind::Boundary) continue;
-      Vec2 tp, tv;
-      surface_traction(P_.p[i], P_.ds[i], P_.normal[i], gradV_[i], mu, tp, tv);
-      fp += tp;
-      fv += tv;
-      torque += cross(domain_.separation(P_.x[i], g.pos), tp + tv);
-    }
-    g.force_pressure = fp;
-    g.force_viscous = fv;
-    g.torque = torque;
   }
 }
 

@@ -17,6 +17,11 @@ namespace particula {
 enum class LaplacianScheme { FatehiManzari, Morris };
 enum class BoundaryModel { SingleLayer, Dummy };
 enum class NormalModel { Kernel, Analytic };
+/// How the hydrodynamic loads on solids are evaluated (docs/method-notes.md, "Forces on solids"):
+/// the paper's sum of the surface traction over the surface particles (P.26-P.27) with the
+/// lattice masses of the paper's fill, or the momentum balance of the fluid in a band around each
+/// solid, with fluid masses that fill the region outside the bodies exactly.
+enum class ForceModel { Paper, Momentum };
 enum class InitialFlow { Rest, TaylorGreen, Couette };
 /// Exact solution a case is compared with (probes get a vx_exact column, summary.json the error).
 enum class ExactSolution { None, Couette, Poiseuille };
@@ -123,6 +128,7 @@ struct Case {
   LaplacianScheme laplacian = LaplacianScheme::FatehiManzari;
   BoundaryModel boundary = BoundaryModel::SingleLayer;
   NormalModel normals = NormalModel::Analytic;  // P.18 is selectable; see docs/method-notes.md
+  ForceModel force = ForceModel::Momentum;
   real rhie_chow_factor = 1;
   real shifting_beta = 0.05;
   real odd_even_damping = 0.005;

@@ -50,6 +50,9 @@ class Shape {
   real signed_distance(Vec2 p) const;
   /// Outward normal of the surface point closest to p (body frame).
   Vec2 closest_normal(Vec2 p) const;
+  /// Signed distance d and its gradient n (the outward unit normal of the closest surface point)
+  /// in one closest-point search (body frame).
+  void distance_and_gradient(Vec2 p, real& d, Vec2& n) const;
   /// Surface samples at spacing about d0 (body frame), with exact dS summing to the perimeter.
   std::vector<SurfaceSample> sample_surface(real d0) const;
   real perimeter() const;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "particula/neighbors/neighbor_list.hpp"
+#include "particula/solver/momentum_loads.hpp"
 #include "particula/solver/particles.hpp"
 #include "particula/solver/rigid_group.hpp"
 #include "particula/solver/sweeps.hpp"
@@ -62,6 +63,17 @@ class DeviceBackend {
 
   /// Loads of every group (pressure and viscous parts, torque about its position).
   virtual void group_loads(const std::vector<RigidGroup>& groups, real mu, std::vector<GroupLoads>& out) = 0;
+  /// Positions of every particle (the band of the momentum loads is built from them once a step).
+  virtual void download_positions(std::vector<Vec2>& x) = 0;
+  /// The band entries of this step (numerics.force = momentum).
+  virtual void set_load_band(const std::vector<BandEntry>& band) = 0;
+  /// band_entry_level of every entry (num, den in x, y) with the device's fields of the current
+  /// stage; `scalars` gives the constants (its pointers are ignored).
+  virtual void band_levels(const LoadArrays& scalars, std::vector<Vec2>& num_den) = 0;
+  /// band_entry_load of every entry, with each group's X_B and smooth-pressure level.
+  virtual void band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
+                          const std::vector<real>& group_level, std::vector<Vec2>& fp, std::vector<Vec2>& fv,
+                          std::vector<real>& torque) = 0;
   /// Surface particle velocities and accelerations from the group motions; with `place`, also
   /// positions and analytic normals.
   virtual void surface_motion(const std::vector<GroupMotion>& motions, bool place) = 0;

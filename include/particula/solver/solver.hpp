@@ -16,6 +16,7 @@
 #include "particula/neighbors/domain.hpp"
 #include "particula/neighbors/neighbor_list.hpp"
 #include "particula/solver/device_backend.hpp"
+#include "particula/solver/momentum_loads.hpp"
 #include "particula/solver/particles.hpp"
 #include "particula/solver/rigid_group.hpp"
 #include "particula/solver/sweeps.hpp"
@@ -51,6 +52,7 @@ struct PhysicsParams {
   bool fatehi_manzari = true;  // false: Morris Laplacian (baseline)
   bool single_layer = true;    // false: dummy-particle boundary (baseline)
   bool kernel_normals = true;  // false: analytic normals
+  bool momentum_force = false;  // loads from the fluid's momentum balance (true) or P.26-P.27 (false)
   real rhie_chow_factor = 1;
   real odd_even_damping = 0.005;  // alpha of the velocity odd-even damping, kappa = alpha c h
   real shifting_beta = 0.05;
@@ -201,7 +203,21 @@ class Solver {
   /// Velocity derivatives of the new V, then the continuity stage rho = rho_start + dt D.
   void derivatives_and_continuity(StageStart from, const StageParams& sp);
   void boundary_pressure();
+  /// Hydrodynamic loads of every group for the current stage: P.26-P.27 (`numerics.force =
+  /// paper`) or the band momentum balance (momentum_loads.hpp).
   void group_loads();
+  /// The band entries of this step (phi_B and its gradient at each fluid particle near a solid;
+  /// positions are frozen during the stages), sorted by group.
+  void build_load_band();
+  /// The solids within `reach` of x (walls, then bodies, in group order): at most `max` of them.
+  int near_solids(Vec2 x, real reach, NearSolid* out, int max) const;
+  /// The band momentum balance of every group (numerics.force = momentum).
+  void momentum_group_loads();
+  /// The load of group k's smooth pressure P_h (momentum_loads.hpp), added exactly: the segment
+  /// integral for a wall, -rho_h g_h A for a body with fluid all round, else the surface sum.
+  void smooth_pressure_load(const LoadArrays& a, std::size_t k, Vec2& force, real& torque) const;
+  /// The stage's fields as the load sum reads them (host arrays).
+  LoadArrays load_arrays() const;
   /// Contacts of the step (positions frozen): finds the touching solids, fails when they
   /// interpenetrate, and computes the paper's forces, or for the spring-dashpot the stiffness
   /// of each contact and the time-step limit they impose (contact_dt_).
@@ -282,6 +298,14 @@ class Solver {
   mutable bool host_current_ = true;  // P_ equals the device state
   bool device_current_ = true;         // the device state equals P_
   std::vector<GroupLoads> loads_;
+  // band momentum balance (numerics.force = momentum): entries of this step by group, the first
+  // entry of each group (size groups + 1), per-entry loads and scratch
+  std::vector<BandEntry> band_;
+  std::vector<std::size_t> band_first_;
+  std::vector<std::uint32_t> band_count_;
+  std::vector<BandEntry> band_unsorted_;
+  std::vector<Vec2> band_fp_, band_fv_, band_x_, group_pos_;
+  std::vector<real> band_torque_, group_level_;
   std::vector<GroupMotion> motions_;
 
   // contacts of the step (spring-dashpot): the groups a (a body) and b (a body or a wall), the

@@ -1,0 +1,228 @@
+// Hydrodynamic loads on the rigid groups (walls and bodies): the paper's surface sum
+// (P.26-P.27) or the band momentum balance of solver/momentum_loads.hpp.
+#include <algorithm>
+#include <cmath>
+
+#include "particula/solver/solver.hpp"
+
+namespace particula {
+
+void Solver::group_loads() {
+  if (prm_.momentum_force) return momentum_group_loads();
+  const real mu = prm_.nu * prm_.rho0;
+  if (dev_) {
+    dev_->group_loads(groups_, mu, loads_);
+    for (std::size_t k = 0; k < groups_.size(); ++k) {
+      groups_[k].force_pressure = loads_[k].force_pressure;
+      groups_[k].force_viscous = loads_[k].force_viscous;
+      groups_[k].torque = loads_[k].torque;
+    }
+    return;
+  }
+  for (auto& g : groups_) {
+    Vec2 fp, fv;
+    real torque = 0;
+    for (std::size_t i = g.first; i < g.first + g.count; ++i) {
+      if (P_.kind[i] != Kind::Boundary) continue;
+      Vec2 tp, tv;
+      surface_traction(P_.p[i], P_.ds[i], P_.normal[i], gradV_[i], mu, tp, tv);
+      fp += tp;
+      fv += tv;
+      torque += cross(domain_.separation(P_.x[i], g.pos), tp + tv);
+    }
+    g.force_pressure = fp;
+    g.force_viscous = fv;
+    g.torque = torque;
+  }
+}
+
+int Solver::near_solids(Vec2 x, real reach, NearSolid* out, int max) const {
+  int count = 0;
+  for (std::size_t k = 0; k < groups_.size() && count < max; ++k) {
+    const RigidGroup& g = groups_[k];
+    real d = 0;
+    Vec2 n;
+    if (g.is_wall) {
+      // Distance to the segment, measured from its midpoint so that a wall spanning a periodic
+      // side is found from either end.
+      const WallLine& w = prm_.walls[k];
+      const Vec2 t = w.to - w.from;
+      const real len = norm(t);
+      const Vec2 e = t / len;
+      const Vec2 rel = domain_.separation(x, 0.5 * (w.from + w.to));
+      const real along = std::clamp(dot(rel, e), -0.5 * len, 0.5 * len);
+      const Vec2 off = rel - along * e;
+      d = norm(off);
+      if (!(d < reach)) continue;
+      n = d > 1e-12 * len ? off / d : w.normal;
+    } else {
+      const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
+      const Vec2 rel = domain_.separation(x, g.pos);
+      if (norm(rel) > b.shape.bounding_radius() + reach) continue;
+      const real c = std::cos(g.angle), s = std::sin(g.angle);
+      Vec2 nl;
+      b.shape.distance_and_gradient(rotate(rel, c, -s), d, nl);
+      if (!(d < reach)) continue;
+      n = rotate(nl, c, s);
+    }
+    out[count++] = NearSolid{static_cast<std::int32_t>(k), std::max(d, real(0)), n};
+  }
+  return count;
+}
+
+void Solver::build_load_band() {
+  const real reach = kLoadBandReach * prm_.h;
+  const std::vector<Vec2>& x = dev_ ? band_x_ : P_.x;
+  if (dev_) dev_->download_positions(band_x_);
+  const std::size_t nb = P_.n_boundary, nf = x.size() - nb;
+  constexpr int kMaxNear = 16;
+  band_count_.assign(nf + 1, 0);
+  // Pass 1: how many solids each fluid particle is near; pass 2: phi and grad phi for each.
+#pragma omp parallel for schedule(static)
+  for (std::size_t f = 0; f < nf; ++f) {
+    NearSolid near[kMaxNear];
+    band_count_[f + 1] = static_cast<std::uint32_t>(near_solids(x[nb + f], reach, near, kMaxNear));
+  }
+  for (std::size_t f = 0; f < nf; ++f) band_count_[f + 1] += band_count_[f];
+  band_unsorted_.resize(band_count_[nf]);
+#pragma omp parallel for schedule(static)
+  for (std::size_t f = 0; f < nf; ++f) {
+    NearSolid near[kMaxNear];
+    const int count = near_solids(x[nb + f], reach, near, kMaxNear);
+    for (int k = 0; k < count; ++k) {
+      BandEntry& e = band_unsorted_[band_count_[f] + static_cast<std::size_t>(k)];
+      e.particle = static_cast<std::uint32_t>(nb + f);
+      e.group = near[k].group;
+      band_partition(near, count, k, reach, e.phi, e.grad_phi);
+    }
+  }
+  // Counting sort by group (stable: particle order within a group), so that each group's sum
+  // runs over its entries in one fixed order whatever the thread count.
+  band_first_.assign(groups_.size() + 1, 0);
+  for (const BandEntry& e : band_unsorted_) ++band_first_[static_cast<std::size_t>(e.group) + 1];
+  for (std::size_t k = 0; k < groups_.size(); ++k) band_first_[k + 1] += band_first_[k];
+  band_.resize(band_unsorted_.size());
+  std::vector<std::size_t> next(band_first_.begin(), band_first_.end() - 1);
+  for (const BandEntry& e : band_unsorted_) band_[next[static_cast<std::size_t>(e.group)]++] = e;
+  if (dev_) dev_->set_load_band(band_);
+}
+
+LoadArrays Solver::load_arrays() const {
+  LoadArrays a;
+  a.domain = domain_;
+  a.x = P_.x.data();
+  a.m = P_.m.data();
+  a.rho = P_.rho.data();
+  a.p = P_.p.data();
+  a.grad_v = gradV_.data();
+  a.lap_v = lapV_.data();
+  a.grad_p_over_rho = G_.data();
+  a.group_pos = group_pos_.data();
+  a.group_level = group_level_.data();
+  a.mu = prm_.nu * prm_.rho0;
+  a.nu = prm_.nu;
+  a.rho0 = prm_.rho0;
+  a.c2 = prm_.c * prm_.c;
+  a.p0 = prm_.p0;
+  // The smooth pressure taken out of the stress: hydrostatic for gravity in the fluid and for a
+  // body force along a closed side (along a periodic side no mean pressure gradient exists).
+  Vec2 g = prm_.body_force;
+  if (prm_.gravity_in_fluid) g += prm_.gravity;
+  if (domain_.periodic_x) g.x = 0;
+  if (domain_.periodic_y) g.y = 0;
+  a.g_h = g;
+  a.x_ref = domain_.lo;
+  return a;
+}
+
+void Solver::momentum_group_loads() {
+  const std::size_t ng = groups_.size(), ne = band_.size();
+  group_pos_.resize(ng);
+  for (std::size_t k = 0; k < ng; ++k) group_pos_[k] = groups_[k].pos;
+  group_level_.assign(ng, prm_.rho0 * prm_.c * prm_.c);  // P_h = p0 for a group without fluid near it
+  band_fp_.resize(ne);
+  band_fv_.resize(ne);
+  band_torque_.resize(ne);
+  LoadArrays a = load_arrays();
+  // Pass 1: each group's level K_B, the smooth field that best matches the fluid in its band
+  // (the pressure's constant is set by the fluid's mass in a closed box: a P_h off by a
+  // constant C adds C times the band's quadrature error of int grad(phi) = 0).
+  if (dev_) {
+    dev_->band_levels(a, band_fp_);  // (num, den) per entry
+  } else {
+#pragma omp parallel for schedule(static)
+    for (std::size_t e = 0; e < ne; ++e) band_entry_level(a, band_[e], band_fp_[e].x, band_fp_[e].y);
+  }
+  for (std::size_t k = 0; k < ng; ++k) {
+    real num = 0, den = 0;
+    for (std::size_t e = band_first_[k]; e < band_first_[k + 1]; ++e) {
+      num += band_fp_[e].x;
+      den += band_fp_[e].y;
+    }
+    if (den > 0) group_level_[k] = num / den;
+  }
+  // Pass 2: the loads of the entries.
+  if (dev_) {
+    dev_->band_loads(a, group_pos_, group_level_, band_fp_, band_fv_, band_torque_);
+  } else {
+#pragma omp parallel for schedule(static)
+    for (std::size_t e = 0; e < ne; ++e) band_entry_load(a, band_[e], band_fp_[e], band_fv_[e], band_torque_[e]);
+  }
+  for (std::size_t k = 0; k < ng; ++k) {
+    RigidGroup& g = groups_[k];
+    Vec2 fp, fv;
+    real torque = 0;
+    smooth_pressure_load(a, k, fp, torque);
+    for (std::size_t e = band_first_[k]; e < band_first_[k + 1]; ++e) {
+      fp += band_fp_[e];
+      fv += band_fv_[e];
+      torque += band_torque_[e];
+    }
+    g.force_pressure = fp;
+    g.force_viscous = fv;
+    g.torque = torque;
+  }
+}
+
+void Solver::smooth_pressure_load(const LoadArrays& a, std::size_t k, Vec2& force, real& torque) const {
+  const RigidGroup& g = groups_[k];
+  const std::int32_t gk = static_cast<std::int32_t>(k);
+  force = Vec2{};
+  torque = 0;
+  if (g.is_wall) {
+    // -n int P_h ds over the segment (4-point Gauss-Legendre: P_h is exponential along it, with
+    // an exponent below 1e-2 in a weakly compressible fluid), and its moment about the group.
+    const WallLine& w = prm_.walls[k];
+    const real len = norm(w.to - w.from);
+    constexpr real xg[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+    constexpr real wg[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+    for (int q = 0; q < 4; ++q) {
+      const Vec2 x = w.from + (0.5 * (1 + xg[q])) * (w.to - w.from);
+      const Vec2 t = (-0.5 * len * wg[q] * smooth_pressure(a, gk, x)) * w.normal;
+      force += t;
+      torque += cross(domain_.separation(x, g.pos), t);
+    }
+    return;
+  }
+  const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
+  std::size_t surface = 0;
+  for (std::size_t i = g.first; i < g.first + g.count; ++i) surface += P_.kind[i] == Kind::Boundary;
+  if (surface == b.samples.size()) {
+    // A body with fluid all round: -int_body grad P_h dA = -rho_h g_h A, rho_h taken at the
+    // centroid (exact for a linear density; the torque about the centroid is then zero).
+    force = (-a.group_level[k] * smooth_pressure_shape(a, g.pos) / a.c2 * g.area) * a.g_h;
+    return;
+  }
+  // A body standing on a wall (its buried side left out): -P_h n dS over its surface particles,
+  // placed from the group's pose (current on the host also when the particles live on the GPU).
+  const GroupMotion mo = group_motion(g);
+  for (std::size_t i = g.first; i < g.first + g.count; ++i) {
+    if (P_.kind[i] != Kind::Boundary) continue;
+    const Vec2 xs = surface_position(domain_, mo, P_.local[i]);
+    const Vec2 t = (-smooth_pressure(a, gk, xs) * P_.ds[i]) * rotate(P_.normal_local[i], mo.cos_angle, mo.sin_angle);
+    force += t;
+    torque += cross(domain_.separation(xs, g.pos), t);
+  }
+}
+
+}  // namespace particula
