@@ -132,6 +132,21 @@ TEST(Solver, CollapsedTimeStepStopsTheRunAndNamesTheClosestPair) {
   for (int k = 0; k < 20; ++k) ASSERT_FALSE(healthy.step().has_value());
 }
 
+TEST(Solver, StrongBodyForceLimitsTheTimeStep) {
+  // A body force of 1e4 m/s^2 on a box of fluid at rest (hydrostatic start): the Courant and
+  // viscous limits know nothing of it, the force condition 0.25 sqrt(h / |f|) does. Without it
+  // the step is 1.2e-4 s, and particles fell by more than h in a step.
+  Case c = busy_box();
+  c.gravity = {0, -1e4};
+  c.c = 200;  // above sqrt(2 g H) = 20 m/s
+  Solver s = make_solver(c);
+  const real limit = 0.25 * std::sqrt(s.params().h / 1e4);
+  EXPECT_NEAR(s.body_force_dt(), limit, 1e-12 * limit);
+  EXPECT_LE(s.stable_dt(), limit);
+  for (int k = 0; k < 50; ++k) ASSERT_FALSE(s.step().has_value()) << "step " << k;
+  EXPECT_LE(s.last_dt(), limit);
+}
+
 TEST(Solver, BlowUpIsDetectedWithParticleAndReason) {
   // A sound speed far below sqrt(g H): the density leaves [0.5, 2] rho0 within a few steps.
   Case c = busy_box();

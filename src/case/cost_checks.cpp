@@ -41,6 +41,10 @@ real estimated_dt(const Case& c, bool capped) {
   real dt = c.cfl * dmin / (c.c + initial_speed(c));
   if (c.nu > 0) dt = std::min(dt, c.cfl * dmin * dmin / c.nu);
   if (capped && c.dt_max > 0) dt = std::min(dt, c.dt_max);
+  // the force condition of Solver::body_force_dt
+  Vec2 f = c.body_force;
+  if (c.gravity_in_fluid) f += c.gravity;
+  if (norm(f) > 0) dt = std::min(dt, 0.25 * std::sqrt(c.h_over_d0 * c.d0 / norm(f)));
   return dt;
 }
 

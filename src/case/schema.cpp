@@ -316,7 +316,7 @@ std::vector<KeySpec> make_schema() {
                  &Case::normals),
       choice_key("numerics.force", {"paper", "momentum"}, def(std::string{"momentum"}),
                  "Hydrodynamic loads on bodies and walls: `momentum` takes them from the momentum balance of "
-                 "the fluid in a band of 3 h around each solid, with fluid masses that fill the region outside "
+                 "the fluid in a band of 5 h around each solid, with fluid masses that fill the region outside "
                  "the bodies exactly (second order, in balance with the momentum put into the fluid); `paper` "
                  "sums the surface traction over the surface particles (P.26-P.27) with the lattice masses of "
                  "the paper's fill, to reproduce its results (docs/method-notes.md, \"Forces on solids\").",

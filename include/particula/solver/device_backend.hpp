@@ -3,7 +3,9 @@
 // output and checkpoints; a DeviceBackend keeps the particle state on the GPU and runs every
 // per-particle pass there with the same PARTICULA_HD functions as the CPU loops
 // (solver/sweeps.hpp, neighbors/neighbor_list.hpp). Per stage only the group loads (down) and
-// the group poses and velocities (up) cross the bus, a few dozen bytes per body.
+// the group poses and velocities (up) cross the bus, a few dozen bytes per body; with
+// numerics.force = momentum also the positions once a step (the load band is built on the
+// host) and the per-entry band loads once a stage (reduced on the host in a fixed order).
 //
 // This header is plain C++: the CUDA implementation lives in src/cuda/ and is compiled only
 // when the CUDA toolkit is found (CMake option PARTICULA_CUDA).
@@ -29,7 +31,7 @@ struct SolverCounters;
 /// (V^n, rho^n), the corrector from the predicted ones (V*, rho*).
 enum class StageStart { StepStart, Predicted };
 
-/// Loads of one rigid group as reduced on the device (P.26-P.27).
+/// Loads of one rigid group as reduced on the device (P.26-P.27, numerics.force = paper).
 struct GroupLoads {
   Vec2 force_pressure, force_viscous;
   real torque = 0;

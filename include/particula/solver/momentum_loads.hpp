@@ -14,7 +14,7 @@
 //
 // The surface sum of P.26-P.27 reads the stress at the surface particles, where the
 // renormalized operators see a one-sided support and are first order: the drag on a cylinder
-// array came out 5.4 % / 3.0 % / 2.2 % low at 10 / 20 / 28 particles across. Here the momentum
+// array came out 5.5 % / 3.0 % / 2.2 % low at 10 / 20 / 28 particles across. Here the momentum
 // rate of the particles next to the surface enters exactly as the scheme computes it (it IS the
 // momentum the fluid exchanges with the surface), and the stress is read only where phi_B
 // varies, which the weight below keeps more than about h from every surface, where the

@@ -165,6 +165,9 @@ class Solver {
 
   /// Time step of P.29-P.31 for the current state (rebuilds nothing: uses the last list).
   real stable_dt() const;
+  /// The force condition 0.25 sqrt(h / |f|) of the body force and gravity on the fluid
+  /// (infinite without either).
+  real body_force_dt() const;
 
   /// Guard counters (checkpoints carry them so a resumed run reports totals).
   void set_counters(const SolverCounters& c) { counters_ = c; }
