@@ -212,8 +212,13 @@ class Solver {
   /// The band entries of this step (phi_B and its gradient at each fluid particle near a solid;
   /// positions are frozen during the stages), sorted by group.
   void build_load_band();
-  /// The solids within `reach` of x (walls, then bodies, in group order): at most `max` of them.
+  /// The solids within `reach` of x (walls, then the bodies of the cells round x): at most `max`.
   int near_solids(Vec2 x, real reach, NearSolid* out, int max) const;
+  /// Solid k's distance and its gradient at x into `out` when x is within `reach` of it.
+  bool offer_near_solid(Vec2 x, real reach, std::size_t k, NearSolid& out) const;
+  /// The bodies binned into cells of (largest bounding radius + reach), once a step.
+  void bin_bodies_for_band(real reach);
+  std::size_t band_cell(Vec2 x) const;
   /// The band momentum balance of every group (numerics.force = momentum).
   void momentum_group_loads();
   /// The load of group k's smooth pressure P_h (momentum_loads.hpp), added exactly: the segment
@@ -309,6 +314,9 @@ class Solver {
   std::vector<BandEntry> band_unsorted_;
   std::vector<Vec2> band_fp_, band_fv_, band_x_, group_pos_;
   std::vector<real> band_torque_, group_level_;
+  int band_cells_x_ = 1, band_cells_y_ = 1;
+  std::vector<std::size_t> band_cell_start_;
+  std::vector<std::uint32_t> band_cell_bodies_;
   std::vector<GroupMotion> motions_;
 
   // contacts of the step (spring-dashpot): the groups a (a body) and b (a body or a wall), the
