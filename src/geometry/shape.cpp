@@ -206,20 +206,23 @@ Vec2 Shape::closest_point(Vec2 p) const {
   return p;
 }
 
-real Shape::signed_distance(Vec2 p) const {
-  bool inside = false;
+bool Shape::contains(Vec2 p) const {
   switch (kind_) {
-    case ShapeKind::Circle: return norm(p) - a_;
-    case ShapeKind::Ellipse: inside = (p.x * p.x) / (a_ * a_) + (p.y * p.y) / (b_ * b_) < 1; break;
-    case ShapeKind::Polygon: inside = inside_polygon(p, verts_); break;
+    case ShapeKind::Circle: return norm(p) < a_;
+    case ShapeKind::Ellipse: return (p.x * p.x) / (a_ * a_) + (p.y * p.y) / (b_ * b_) < 1;
+    case ShapeKind::Polygon: return inside_polygon(p, verts_);
     case ShapeKind::HalfDisc: {
       const Vec2 r = p - Vec2{-centroid_offset_.x, 0};
-      inside = r.x > 0 && norm(r) < a_;
-      break;
+      return r.x > 0 && norm(r) < a_;
     }
   }
+  return false;
+}
+
+real Shape::signed_distance(Vec2 p) const {
+  if (kind_ == ShapeKind::Circle) return norm(p) - a_;
   const real d = norm(p - closest_point(p));
-  return inside ? -d : d;
+  return contains(p) ? -d : d;
 }
 
 Vec2 Shape::closest_normal(Vec2 p) const {
@@ -242,17 +245,7 @@ void Shape::distance_and_gradient(Vec2 p, real& d, Vec2& n) const {
     return;
   }
   const Vec2 q = closest_point(p);
-  bool inside = false;
-  switch (kind_) {
-    case ShapeKind::Ellipse: inside = (p.x * p.x) / (a_ * a_) + (p.y * p.y) / (b_ * b_) < 1; break;
-    case ShapeKind::Polygon: inside = inside_polygon(p, verts_); break;
-    case ShapeKind::HalfDisc: {
-      const Vec2 r = p - Vec2{-centroid_offset_.x, 0};
-      inside = r.x > 0 && norm(r) < a_;
-      break;
-    }
-    default: break;
-  }
+  const bool inside = contains(p);
   const real dist = norm(p - q);
   d = inside ? -dist : dist;
   if (kind_ == ShapeKind::Ellipse) n = ellipse_normal(a_, b_, q);

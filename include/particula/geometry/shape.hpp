@@ -46,6 +46,8 @@ class Shape {
   /// Smallest dimension across the body (diameter, minor axis, ...), for resolution checks.
   real min_width() const { return min_width_; }
 
+  /// Whether p (body frame) lies inside the solid.
+  bool contains(Vec2 p) const;
   /// Signed distance in the body frame: negative inside the solid.
   real signed_distance(Vec2 p) const;
   /// Outward normal of the surface point closest to p (body frame).
