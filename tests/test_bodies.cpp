@@ -184,7 +184,7 @@ TEST(Contacts, GeneralShapesAndWalls) {
   const PlacedBody r{&e, &se, {0.5 + 3.5e-3, 0.5}, M_PI / 2};
   EXPECT_NEAR(body_contact(r, b, dom).gap, 0.5e-3, 2e-6);
   // A wall below: gap = distance from the lowest surface sample (exact to the sampling).
-  const Contact w = wall_contact(b, {0, 0.4985}, {1, 0.4985}, {0, 1});
+  const Contact w = wall_contact(b, WallPiece::segment({0, 0.4985}, {1, 0.4985}));
   EXPECT_NEAR(w.gap, 0.5e-3, 1e-7);
   EXPECT_EQ(w.normal.y, 1.0);
 }

@@ -251,6 +251,14 @@ output.interval = 0.1
 [[wall]]
 from = [0, 0]
 to = [1, 0]
+[[wall]]
+shape = "arc"
+center = [0.6, 0.85]
+radius = 0.08
+start_angle = 0
+end_angle = -6.283185307179586
+omega = 1
+pivot = [0.6, 0.85]
 [[probe]]
 name = "p"
 from = [0, 0]

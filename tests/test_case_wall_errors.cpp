@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fmt/format.h>
 
 #include "case_bodies_fixtures.hpp"
 
@@ -42,8 +43,12 @@ std::string box_with_wall(const std::string& name, const std::string& from, cons
   return kBox + "\n[[wall]]\nname = \"" + name + "\"\nfrom = " + from + "\nto = " + to + "\n";
 }
 
-/// A horizontal baffle across the middle of kBox, fluid above it (its left side).
-const std::string kBaffle = box_with_wall("baffle", "[0.005, 0.03]", "[0.015, 0.03]");
+/// A shelf in the middle of kBox: a closed plate 1 mm thick listed clockwise (the fluid outside),
+/// whose top side is the baffle (wall[4], fluid above it: its left side).
+const std::string kBaffle = box_with_wall("baffle", "[0.005, 0.03]", "[0.015, 0.03]") +
+                            "\n[[wall]]\nname = \"shelf_right\"\nfrom = [0.015, 0.03]\nto = [0.015, 0.029]\n"
+                            "\n[[wall]]\nname = \"shelf_under\"\nfrom = [0.015, 0.029]\nto = [0.005, 0.029]\n"
+                            "\n[[wall]]\nname = \"shelf_left\"\nfrom = [0.005, 0.029]\nto = [0.005, 0.03]\n";
 
 /// kBox made periodic along x, with walls only along the bottom and top.
 std::string periodic_x_channel() {
@@ -123,8 +128,8 @@ TEST(CaseWallErrors, DuplicatedWall) {
       box_with_wall("again", "[0, 0]", "[0.02, 0]"), "wall[4].from", "from = [0, 0]",
       "wall 'again' (wall[4]) duplicates wall 'bottom' (wall[0]): they share 0.02 m of the same line");
   expect_error(kBaffle + "\n[[wall]]\nname = \"back\"\nfrom = [0.015, 0.03]\nto = [0.005, 0.03]\n",
-               "wall[5].from", "from = [0.015, 0.03]",
-               "wall 'back' (wall[5]) duplicates (reversed) wall 'baffle' (wall[4])");
+               "wall[8].from", "from = [0.015, 0.03]\nto = [0.005, 0.03]",
+               "wall 'back' (wall[8]) duplicates (reversed) wall 'baffle' (wall[4])");
 }
 
 TEST(CaseWallErrors, CollinearWallsOverlapping) {
@@ -142,7 +147,10 @@ TEST(CaseWallErrors, WallShorterThanHalfD0) {
   expect_error(box_with_wall("tiny", "[0.01, 0.03]", "[0.01, 0.030000000000001]"), "wall[4].to",
                "to = [0.01, 0.030000000000001]",
                "wall 'tiny' is 1e-15 m long, shorter than d0/2 = 5e-05 m");
-  EXPECT_NO_THROW(load(box_with_wall("short", "[0.01, 0.03]", "[0.01, 0.03005]")));
+  // The right wall in two pieces, the lower one d0/2 long.
+  EXPECT_NO_THROW(load(with(kBox, "from = [0.02, 0.0]\nto = [0.02, 0.06]",
+                            "from = [0.02, 0.0]\nto = [0.02, 0.00005]\n\n[[wall]]\nname = \"short\"\n"
+                            "from = [0.02, 0.00005]\nto = [0.02, 0.06]")));
 }
 
 TEST(CaseWallErrors, SlidingWallOnlyAlongAPeriodicAxis) {
@@ -204,8 +212,11 @@ TEST(CaseWallErrors, JoinedWallsWithOppositeOrientations) {
                "wall 'b' (wall[5]) and wall 'a' (wall[4]) both end at [0.01, 0.02]: they have opposite "
                "orientations");
   EXPECT_NE(error_of(vee).message().find("swap from and to of wall 'b' (wall[5])"), std::string::npos);
-  EXPECT_NO_THROW(load(
-      with(vee, "from = [0.01, 0.03]\nto = [0.010, 0.020]", "from = [0.010, 0.020]\nto = [0.01, 0.03]")));
+  // Head to tail they are a chain, but one that ends inside the domain: it encloses no region.
+  expect_error(with(vee, "from = [0.01, 0.03]\nto = [0.010, 0.020]", "from = [0.010, 0.020]\nto = [0.01, 0.03]"),
+               "wall[4].from", "from = [0.005, 0.02]",
+               "wall 'a' (wall[4]) starts at [0.005, 0.02], inside the domain and joined to no other wall: the region "
+               "the walls enclose is not closed");
   // A step on the floor listed against the floor: the wall on the domain edge is the one that is right.
   const std::string step = kBase +
                            "\n[[wall]]\nname = \"riser\"\nfrom = [0.01, 0.005]\nto = [0.01, 0.0]\n"
@@ -262,16 +273,20 @@ TEST(CaseWallErrors, BodyWithinHalfD0OfAWall) {
 }
 
 TEST(CaseWallErrors, BodyNearAWallAcrossThePeriodicBoundary) {
-  // The baffle ends on the periodic boundary x = 0.02; the disc near x = 0 reaches its image.
+  // A closed plate whose left side is at x = 0.001; the disc near x = 0.02 reaches across the
+  // periodic boundary x = 0.02 to within 4e-5 m of it.
   const std::string text = periodic_x_channel() +
-                           "\n[[wall]]\nname = \"baffle\"\nfrom = [0.015, 0.03]\nto = [0.02, 0.03]\n"
-                           "\n[[body]]\nshape = \"circle\"\ncenter = [0.00129, 0.03]\nradius = 0.00125\n"
+                           "\n[[wall]]\nname = \"plate_left\"\nfrom = [0.001, 0.031]\nto = [0.001, 0.029]\n"
+                           "\n[[wall]]\nname = \"plate_under\"\nfrom = [0.001, 0.029]\nto = [0.005, 0.029]\n"
+                           "\n[[wall]]\nname = \"plate_right\"\nfrom = [0.005, 0.029]\nto = [0.005, 0.031]\n"
+                           "\n[[wall]]\nname = \"plate_top\"\nfrom = [0.005, 0.031]\nto = [0.001, 0.031]\n"
+                           "\n[[body]]\nshape = \"circle\"\ncenter = [0.01971, 0.03]\nradius = 0.00125\n"
                            "density = 1000\n";
   expect_error(
-      text, "body[0].center", "center = [0.00129, 0.03]",
-      "wall 'baffle' (wall[2]) passes 4e-05 m from body 'body0' (circle) at t = 0 across the periodic "
+      text, "body[0].center", "center = [0.01971, 0.03]",
+      "wall 'plate_left' (wall[2]) passes 4e-05 m from body 'body0' (circle) at t = 0 across the periodic "
       "boundary");
-  EXPECT_NO_THROW(load(with(text, "center = [0.00129, 0.03]", "center = [0.0013, 0.03]")));
+  EXPECT_NO_THROW(load(with(text, "center = [0.01971, 0.03]", "center = [0.0197, 0.03]")));
 }
 
 TEST(CaseWallErrors, OnlyAFixedBodyStandsOnAWall) {
@@ -307,4 +322,78 @@ TEST(CaseWallErrors, OnlyAFixedBodyStandsOnAWall) {
                    "vertices = [[0.008, 0.03], [0.0095, 0.03], [0.0095, 0.028], [0.0115, 0.028], "
                    "[0.0115, 0.032], [0.008, 0.032]]\n",
                "body[0].vertices", "vertices = [[0.008", "wall 'baffle' (wall[4]) cuts through body 'body0'");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Arcs, turning walls and the enclosed region (issue 19).
+
+namespace {
+
+/// kBase's domain holding one circular container (an arc turning counter-clockwise).
+std::string container(const std::string& extra = "") {
+  return kBase +
+         "\n[[wall]]\nname = \"drum\"\nshape = \"arc\"\ncenter = [0.01, 0.03]\nradius = 0.008\n"
+         "start_angle = 0.0\nend_angle = 6.283185307179586\n" +
+         extra;
+}
+
+}  // namespace
+
+TEST(CaseWallErrors, ArcsAreCheckedAtLoad) {
+  EXPECT_NO_THROW(load(container()));
+  EXPECT_NO_THROW(load(container("omega = 3.0\npivot = [0.01, 0.03]\n")));
+  expect_error(with(container(), "end_angle = 6.283185307179586", "end_angle = 7.0"), "wall[0].end_angle",
+               "end_angle = 7.0", "wall 'drum' (wall[0]) turns through 7 rad, more than a full circle");
+  expect_error(with(container(), "end_angle = 6.283185307179586", "end_angle = 0.0"), "wall[0].end_angle",
+               "end_angle = 0.0", "arc has zero length");
+  expect_error(with(container(), "radius = 0.008", "radius = 0.0002"), "wall[0].radius", "radius = 0.0002",
+               "below the smoothing length h");
+  expect_error(with(container(), "radius = 0.008", "radius = 0.0105"), "wall[0].center", "center = [0.01, 0.03]",
+               "wall 'drum' (wall[0]) leaves the domain");
+  expect_error(container("velocity = [0.01, 0.0]\n"), "wall[0].velocity", "velocity = [0.01",
+               "is an arc and cannot slide");
+  // Segment keys on an arc are refused like a body's keys of another shape.
+  expect_error(container("from = [0.0, 0.0]\n"), "wall[0].from", "from = [0.0, 0.0]", "");
+  // The same circle twice.
+  expect_error(container() + "\n[[wall]]\nname = \"again\"\nshape = \"arc\"\ncenter = [0.01, 0.03]\n"
+                              "radius = 0.008\nstart_angle = 3.0\nend_angle = 4.0\n",
+               "wall[1].shape", "shape = \"arc\"\ncenter = [0.01, 0.03]\nradius = 0.008\nstart_angle = 3.0",
+               "wall 'again' (wall[1]) runs along wall 'drum' (wall[0])");
+}
+
+TEST(CaseWallErrors, TurningWallsStayInTheDomainAndTurnWithTheirChain) {
+  expect_error(container("omega = 3.0\n"), "wall[0].pivot", "[[wall]]",
+               "wall 'drum' (wall[0]) turns about [0.0, 0.0] and reaches");
+  // A square drum turning about its centre, one of its sides left out of the turning.
+  std::string drum = kBase;
+  const char* corners[5] = {"[0.005, 0.025]", "[0.015, 0.025]", "[0.015, 0.035]", "[0.005, 0.035]", "[0.005, 0.025]"};
+  for (int k = 0; k < 4; ++k)
+    drum += fmt::format("\n[[wall]]\nname = \"side{}\"\nfrom = {}\nto = {}\n{}", k, corners[k], corners[k + 1],
+                        k == 1 ? "" : "omega = 1.0\npivot = [0.01, 0.03]\n");
+  expect_error(drum, "wall[0].omega", "omega = 1.0",
+               "wall 'side0' (wall[0]) turns (omega 1 rad/s about [0.01, 0.03]) but shares an end point with wall "
+               "'side1' (wall[1]), which does not turn with it");
+  EXPECT_NO_THROW(load(with(drum, "to = [0.015, 0.035]\n", "to = [0.015, 0.035]\nomega = 1.0\npivot = [0.01, 0.03]\n")));
+}
+
+TEST(CaseWallErrors, TheWallsMustEncloseTheFluid) {
+  // A wall ending on another wall's side: split it there.
+  expect_error(box_with_wall("shelf", "[0.0, 0.03]", "[0.01, 0.03]"), "wall[4].from", "from = [0.0, 0.03]",
+               "wall 'shelf' (wall[4]) starts at [0.0, 0.03], on the side of wall 'left' (wall[3]): split wall "
+               "'left' (wall[3]) there into two walls");
+  // An open arc inside the domain.
+  expect_error(with(container(), "end_angle = 6.283185307179586", "end_angle = 3.0"), "wall[0].end_angle",
+               "end_angle = 3.0", "inside the domain and joined to no other wall: the region the walls enclose is "
+               "not closed");
+}
+
+TEST(CaseWallErrors, SpinUpNeedsOneTurningCircularContainer) {
+  const std::string spin = container("omega = 3.0\npivot = [0.01, 0.03]\n") + "\n[validation]\nexact = \"spin_up\"\n";
+  EXPECT_NO_THROW(load(spin));
+  expect_error(with(spin, "omega = 3.0\n", ""), "validation.exact", "exact = \"spin_up\"",
+               "validation.exact = \"spin_up\" needs the wall to turn");
+  expect_error(with(spin, "end_angle = 6.283185307179586", "end_angle = -6.283185307179586"), "validation.exact",
+               "exact = \"spin_up\"", "a full circle turning counter-clockwise");
+  expect_error(spin + "\n[[body]]\nshape = \"circle\"\ncenter = [0.01, 0.03]\nradius = 0.002\nmotion = \"fixed\"\n",
+               "validation.exact", "exact = \"spin_up\"", "needs no bodies");
 }

@@ -218,7 +218,7 @@ TEST(CliFiles, SigtermDuringALongOutputEndsWithinASecondAndTheResumedRunWritesIt
   EXPECT_LT(waited, 1.0) << "SIGTERM honoured within a second";
   EXPECT_TRUE(fs::exists(dir / "cut" / "checkpoint" / "state.bin"));
   EXPECT_EQ(read_text(probe),
-            "time,x,y,vx,vy,p,vx_exact\n# units: time [s], x [m], y [m], vx [m/s], vy [m/s], p [Pa], vx_exact [m/s]\n")
+            "time,x,y,vx,vy,p,vx_exact,vy_exact\n# units: time [s], x [m], y [m], vx [m/s], vy [m/s], p [Pa], vx_exact [m/s], vy_exact [m/s]\n")
       << "no partial rows";
   std::printf("SIGTERM during a long probe output: exit 130 after %.3f s\n", waited);
 

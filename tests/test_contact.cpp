@@ -264,7 +264,7 @@ TEST(ContactTorque, OffCentreContactTurnsTheBody) {
   const auto samples = e.sample_surface(5e-5);
   const real angle = 0.3;
   const PlacedBody body{&e, &samples, {0.01, 0}, angle};
-  Contact c = wall_contact(body, {0, -0.5}, {0.02, -0.5}, {0, 1});
+  Contact c = wall_contact(body, WallPiece::segment({0, -0.5}, {0.02, -0.5}));
   c.gap = 0;  // place the wall at the lowest point
   const Vec2 r = c.point - body.pos;
   EXPECT_GT(std::fabs(r.x), 0.5e-3) << "the lowest point is off the vertical through the centre";
@@ -293,8 +293,8 @@ TEST(ContactTorque, ADiscOnAWallFeelsNoTorqueFromTheNormalForce) {
   const auto samples = c.sample_surface(2e-4);
   for (real angle : {0.0, 0.03, 0.05, 1.0}) {
     const PlacedBody disc{&c, &samples, {0.01, 0.001 + R}, angle};
-    const Contact sampled = wall_contact(disc, {0, 0.001}, {0.02, 0.001}, {0, 1});
-    const Contact exact = wall_contact_exact(disc, {0, 0.001}, {0.02, 0.001}, {0, 1});
+    const Contact sampled = wall_contact(disc, WallPiece::segment({0, 0.001}, {0.02, 0.001}));
+    const Contact exact = wall_contact_exact(disc, WallPiece::segment({0, 0.001}, {0.02, 0.001}));
     EXPECT_NEAR(exact.gap, 0.0, 1e-15);
     EXPECT_GE(sampled.gap, exact.gap - 1e-15);
     EXPECT_DOUBLE_EQ(exact.point.x, 0.01);
@@ -302,7 +302,7 @@ TEST(ContactTorque, ADiscOnAWallFeelsNoTorqueFromTheNormalForce) {
   }
   // Beyond the segment's ends the wall does not act.
   const PlacedBody off{&c, &samples, {0.03, 0.001 + R}, 0};
-  EXPECT_GT(wall_contact_exact(off, {0, 0.001}, {0.02, 0.001}, {0, 1}).gap, 1e299);
+  EXPECT_GT(wall_contact_exact(off, WallPiece::segment({0, 0.001}, {0.02, 0.001})).gap, 1e299);
 }
 
 TEST(ContactTorque, FrictionOfASlidingDiscIsCoulombAndSpinsIt) {

@@ -36,11 +36,12 @@ struct Coarse {
 
 /// Cheap enough for CI. taylor_green: 30 x 30 (at 25 x 25 it fails before its own end time,
 /// t = 0.33 s: a negative density); couette, poiseuille: 16 across (the periodic length must
-/// hold 3 h); hydrostatic: 20 across.
+/// hold 3 h); hydrostatic: 20 across; spin_up: 10 across the radius.
 const Coarse kAnalytic[] = {{"couette", "6.25e-5"},
                             {"poiseuille", "6.25e-5"},
                             {"taylor_green", "0.03333333333333333"},
-                            {"hydrostatic", "5e-3"}};
+                            {"hydrostatic", "5e-3"},
+                            {"spin_up", "1e-3"}};
 
 /// 10 particles across the smallest body; particle-steps to twice the end time (info --no-timing):
 /// falling_cylinder 4.0e8, dkt 1.2e9, ellipse_obstacle 1.3e9, shear_migration 4.4e9,

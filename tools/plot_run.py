@@ -171,6 +171,10 @@ def plot_line_probe(run, name, out):
     if shown[-1] != len(times) - 1:
         shown.append(len(times) - 1)
     has_exact = "vx_exact" in p
+    # the velocity component the exact solution is about (vy for a radius of the spin-up case)
+    comp = "vx"
+    if has_exact and "vy_exact" in p and np.max(np.abs(p["vy_exact"])) > np.max(np.abs(p["vx_exact"])):
+        comp = "vy"
     spec = probe_spec(run.case, name)
     vertical = abs(spec.get("to", [0, 1])[1] - spec.get("from", [0, 0])[1]) >= \
         abs(spec.get("to", [1, 0])[0] - spec.get("from", [0, 0])[0])
@@ -180,27 +184,27 @@ def plot_line_probe(run, name, out):
     for k, i in enumerate(shown):
         color = cmap(k / max(1, len(shown) - 1))
         if vertical:
-            ax.plot(p["vx"][i], pos, "o", ms=3, color=color, label="t = %.4g s" % times[i])
+            ax.plot(p[comp][i], pos, "o", ms=3, color=color, label="t = %.4g s" % times[i])
         else:
-            ax.plot(pos, p["vx"][i], "o", ms=3, color=color, label="t = %.4g s" % times[i])
+            ax.plot(pos, p[comp][i], "o", ms=3, color=color, label="t = %.4g s" % times[i])
         if has_exact:
-            args = (p["vx_exact"][i], pos) if vertical else (pos, p["vx_exact"][i])
+            args = (p[comp + "_exact"][i], pos) if vertical else (pos, p[comp + "_exact"][i])
             ax.plot(*args, "-", lw=1, color=color, label="exact" if k == len(shown) - 1 else None)
-    ax.set_xlabel("vx (m/s)" if vertical else pos_label)
-    ax.set_ylabel(pos_label if vertical else "vx (m/s)")
+    ax.set_xlabel(comp + " (m/s)" if vertical else pos_label)
+    ax.set_ylabel(pos_label if vertical else comp + " (m/s)")
     ax.grid(True, alpha=0.3)
-    ax.set_title(title(run, "probe '%s': vx along the line%s" % (name, " (lines: exact)" if has_exact else "")),
+    ax.set_title(title(run, "probe '%s': %s along the line%s" % (name, comp, " (lines: exact)" if has_exact else "")),
                  fontsize=9, wrap=True)
     ax.legend(fontsize=7)
     fig.tight_layout()
     save(fig, out, "probe_%s_profiles.png" % name)
     if has_exact and len(times) > 1:
-        peak = max(1e-300, float(np.max(np.abs(p["vx_exact"]))))
-        err = np.sqrt(np.mean((p["vx"] - p["vx_exact"]) ** 2, axis=1)) / peak
+        peak = max(1e-300, float(np.max(np.abs(p[comp + "_exact"]))))
+        err = np.sqrt(np.mean((p[comp] - p[comp + "_exact"]) ** 2, axis=1)) / peak
         fig, ax = plt.subplots(figsize=(7.5, 4.2))
         ax.semilogy(times[1:], np.maximum(err[1:], 1e-12), "o-")
         ax.set_xlabel("t (s)")
-        ax.set_ylabel("L2 error of vx / peak speed (-)")
+        ax.set_ylabel("L2 error of %s / peak speed (-)" % comp)
         ax.set_title(title(run, "probe '%s': profile error" % name), fontsize=9, wrap=True)
         ax.grid(True, which="both", alpha=0.3)
         fig.tight_layout()

@@ -45,37 +45,32 @@ Contact body_contact(const PlacedBody& a, const PlacedBody& b, const Domain& dom
   return ab.gap <= ba.gap ? ab : ba;
 }
 
-Contact wall_contact(const PlacedBody& a, Vec2 from, Vec2 to, Vec2 normal) {
+Contact wall_contact(const PlacedBody& a, const WallPiece& wall) {
   Contact best;
   const real ca = std::cos(a.angle), sa = std::sin(a.angle);
-  const Vec2 t = to - from;
-  const real L2 = norm2(t);
   for (const auto& s : *a.samples) {
     const Vec2 p = a.pos + rotate(s.x, ca, sa);
-    const real u = dot(p - from, t) / L2;
-    // beyond the segment's ends the wall does not act (a neighbouring wall does)
-    if (u < 0 || u > 1) continue;
-    const real d = dot(p - from, normal);
-    if (d < best.gap) {
-      best.gap = d;
-      best.normal = normal;
+    const WallNearest n = wall.nearest(p);
+    if (!n.interior) continue;  // beyond the wall's ends the wall does not act (a neighbouring wall does)
+    if (n.side < best.gap) {
+      best.gap = n.side;
+      best.normal = n.normal;
       best.point = p;
     }
   }
   return best;
 }
 
-Contact wall_contact_exact(const PlacedBody& a, Vec2 from, Vec2 to, Vec2 normal) {
-  if (a.shape->kind() != ShapeKind::Circle) return wall_contact(a, from, to, normal);
+Contact wall_contact_exact(const PlacedBody& a, const WallPiece& wall) {
+  if (a.shape->kind() != ShapeKind::Circle) return wall_contact(a, wall);
   Contact c;
   const real R = a.shape->bounding_radius();
-  const Vec2 p = a.pos - R * normal;  // the point of the circle nearest the wall line
-  const Vec2 t = to - from;
-  const real u = dot(p - from, t) / norm2(t);
-  if (u < 0 || u > 1) return c;  // beyond the segment's ends the wall does not act
-  c.gap = dot(p - from, normal);
-  c.normal = normal;
-  c.point = p;
+  // the point of the circle nearest the wall: straight towards the wall from the centre
+  const WallNearest n = wall.nearest(a.pos);
+  if (!n.interior) return c;  // beyond the wall's ends the wall does not act
+  c.gap = n.side - R;
+  c.normal = n.normal;
+  c.point = a.pos - R * n.normal;
   return c;
 }
 

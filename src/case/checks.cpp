@@ -51,12 +51,16 @@ bool inside(Vec2 p, const Case& c, real tol) {
          p.y <= c.domain_max.y + tol;
 }
 
-/// Walls: non-zero length, endpoints in the domain, velocity along the wall.
+/// Walls: non-zero length, endpoints in the domain (an arc: all of it), velocity along the wall.
 void check_walls(const Case& c, const LoadContext& ctx) {
   const real tol = c.d0 * 1e-6;
   for (std::size_t k = 0; k < c.walls.size(); ++k) {
     const WallSpec& w = c.walls[k];
     const std::string key = fmt::format("wall[{}].", k);
+    if (w.shape == WallShape::Arc) {
+      check_arc_wall(c, ctx, k);
+      continue;
+    }
     for (const auto& [end, p] : {std::pair{"from", w.from}, std::pair{"to", w.to}})
       if (!inside(p, c, tol))
         throw ctx.error(key + end, fmt::format("wall end point {} lies outside the domain {} .. {}", vec(p),
@@ -597,13 +601,6 @@ void check_body_overlap(const Case& c, const LoadContext& ctx) {
 // one's `to` is the other's `from`, and leaves out wall particles within d0/2 of a body. A case
 // that breaks these rules loads but fails at the first step (NaN), so it is stopped here.
 
-std::string wall_key(std::size_t k, std::string_view leaf) { return fmt::format("wall[{}].{}", k, leaf); }
-
-/// "wall 'bottom' (wall[0])".
-std::string wall_text(const Case& c, std::size_t k) {
-  return fmt::format("wall '{}' (wall[{}])", c.walls[k].name, k);
-}
-
 Vec2 unit(Vec2 v) { return v / norm(v); }
 
 /// Normal on the fluid side of a wall.
@@ -642,6 +639,7 @@ struct DomainEdge {
 
 /// The domain edge a wall lies on (both ends on its line, within tol), if any.
 std::optional<DomainEdge> edge_of(const Case& c, const WallSpec& w, real tol) {
+  if (w.shape == WallShape::Arc) return std::nullopt;
   for (int axis = 0; axis < 2; ++axis)
     for (const bool lower : {true, false}) {
       const real v = component(lower ? c.domain_min : c.domain_max, axis);
@@ -688,6 +686,7 @@ void check_wall_overlap(const Case& c, const LoadContext& ctx) {
   for (std::size_t j = 0; j < c.walls.size(); ++j) {
     for (std::size_t i = 0; i < j; ++i) {
       const WallSpec &a = c.walls[i], &b = c.walls[j];
+      if (a.shape == WallShape::Arc || b.shape == WallShape::Arc) continue;  // check_arc_overlap
       const Vec2 u = unit(a.to - a.from);
       if (std::fabs(cross(u, b.from - a.from)) > tol || std::fabs(cross(u, b.to - a.from)) > tol) continue;
       const real s1 = dot(u, b.from - a.from), s2 = dot(u, b.to - a.from);
@@ -846,8 +845,9 @@ std::vector<FlatSide> flat_sides(const Outline& o) {
 /// its free side meets the wall into junctions): a flat side lies on the wall's line facing into
 /// the wall and shares a stretch with it, and no part of the body reaches past that line where
 /// the wall is. `samples` are points on the body's boundary.
-bool stands_on(const Outline& o, const std::vector<Vec2>& samples, Vec2 a, Vec2 b, real tol) {
-  if (o.body->motion != BodyMotion::Fixed) return false;
+bool stands_on(const Outline& o, const std::vector<Vec2>& samples, const WallPiece& w, real tol) {
+  if (o.body->motion != BodyMotion::Fixed || w.is_arc()) return false;
+  const Vec2 a = w.start(), b = w.end();
   const Vec2 u = unit(b - a), n{-u.y, u.x};
   const real L = norm(b - a);
   constexpr real antiparallel = -0.999;  // as place_on_walls
@@ -865,22 +865,22 @@ bool stands_on(const Outline& o, const std::vector<Vec2>& samples, Vec2 a, Vec2 
   });
 }
 
-/// Gap between a body and the segment [a, b], <= 0 where they meet: exact for a circle, else the
-/// least distance of the boundary samples (at most half their spacing too large).
-real gap_to_wall(const Outline& o, const std::vector<Vec2>& samples, Vec2 a, Vec2 b) {
-  if (o.body->shape == BodyShape::Circle) return segment_distance(o.center, a, b) - o.body->radius;
-  if (o.contains(a, 0)) return 0;  // the wall lies inside (it would come near the boundary if it left)
+/// Gap between a body and a wall, <= 0 where they meet: exact for a circle, else the least
+/// distance of the boundary samples (at most half their spacing too large).
+real gap_to_wall(const Outline& o, const std::vector<Vec2>& samples, const WallPiece& w) {
+  if (o.body->shape == BodyShape::Circle) return w.nearest(o.center).distance - o.body->radius;
+  if (o.contains(w.start(), 0)) return 0;  // the wall lies inside (it would come near the boundary if it left)
   real gap = std::numeric_limits<real>::infinity();
-  for (const Vec2 p : samples) gap = std::min(gap, segment_distance(p, a, b));
+  for (const Vec2 p : samples) gap = std::min(gap, w.nearest(p).distance);
   return gap;
 }
 
-/// Whether the segment [a, b] runs through the inside of a body (deeper than tol), tested at
-/// points `step` apart.
-bool cuts_through(const Outline& o, Vec2 a, Vec2 b, real step, real tol) {
-  const real n = std::min(1e6, std::ceil(norm(b - a) / step));
+/// Whether a wall runs through the inside of a body (deeper than tol), tested at points `step`
+/// apart.
+bool cuts_through(const Outline& o, const WallPiece& w, real step, real tol) {
+  const real n = std::min(1e6, std::ceil(w.length() / step));
   for (real i = 0; i <= n; ++i)
-    if (o.contains(a + (i / n) * (b - a), tol)) return true;
+    if (o.contains(w.point_at(i / n), tol)) return true;
   return false;
 }
 
@@ -896,17 +896,17 @@ void check_walls_clear_of_bodies(const Case& c, const LoadContext& ctx) {
     std::vector<Vec2> samples;  // 0.01 d0 apart (at least 2000, at most 200000), made when needed
     for (std::size_t w = 0; w < c.walls.size(); ++w)
       for (const Vec2 shift : shifts) {
-        const Vec2 a = c.walls[w].from - shift, b = c.walls[w].to - shift;
-        if (segment_distance(o.center, a, b) >= o.bound + reach) continue;
+        const WallPiece piece = c.walls[w].piece().moved({}, 0, -1.0 * shift);
+        if (piece.nearest(o.center).distance >= o.bound + reach) continue;
         if (samples.empty()) {
           const real n = o.perimeter() / (0.01 * c.d0);
           samples = o.boundary(static_cast<std::size_t>(n > 2000 ? std::min(n, 2e5) : 2000));  // NaN: 2000
         }
-        const real gap = gap_to_wall(o, samples, a, b);
+        const real gap = gap_to_wall(o, samples, piece);
         const bool across = shift.x != 0 || shift.y != 0;
-        if (gap >= reach || (!across && stands_on(o, samples, a, b, tol))) continue;
+        if (gap >= reach || (!across && stands_on(o, samples, piece, tol))) continue;
         const std::string where = across ? " across the periodic boundary" : "";
-        if (cuts_through(o, a, b, 0.05 * c.d0, tol))
+        if (cuts_through(o, piece, 0.05 * c.d0, tol))
           throw ctx.error(
               place_key(c, k),
               fmt::format("{} cuts through {} at t = 0{}: move the body clear of the wall (only a "
@@ -938,9 +938,10 @@ real outline_gap(const Outline& A, const Outline& B, Vec2 shift, std::size_t poi
 
 /// Gap between an outline and a wall segment: exact for a circle, otherwise from its boundary points.
 real wall_gap(const Outline& A, const WallSpec& w, std::size_t points) {
-  if (A.body->shape == BodyShape::Circle) return segment_distance(A.center, w.from, w.to) - A.body->radius;
+  const WallPiece piece = w.piece();
+  if (A.body->shape == BodyShape::Circle) return piece.nearest(A.center).distance - A.body->radius;
   real gap = std::numeric_limits<real>::infinity();
-  for (const Vec2 p : A.boundary(points)) gap = std::min(gap, segment_distance(p, w.from, w.to));
+  for (const Vec2 p : A.boundary(points)) gap = std::min(gap, piece.nearest(p).distance);
   return gap;
 }
 
@@ -998,6 +999,7 @@ using CrossCheck = void (*)(const Case&, const LoadContext&);
 constexpr CrossCheck kChecks[] = {check_domain,           check_magnitudes,     check_periodic_width, check_walls,
                                   check_walls_off_periodic_edges, check_wall_orientation, check_wall_overlap,
                                   check_wall_gaps, check_wall_joints, check_wall_chains, check_sliding_walls,
+                                  check_arc_overlap,      check_turning_walls,  check_region_closed, check_spin_up,
                                   check_unused_keys,      check_polygons,       check_density,
                                   check_schedules,        check_fixed_bodies,   check_body_sizes,
                                   check_bodies_in_domain, check_body_overlap,   check_walls_clear_of_bodies,

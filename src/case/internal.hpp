@@ -72,6 +72,21 @@ void check_probes(const Case& c, const LoadContext& ctx);
 void check_references(const Case& c, const LoadContext& ctx);
 void check_time_steps(const Case& c, const LoadContext& ctx);
 
+/// "wall[2].from".
+std::string wall_key(std::size_t k, std::string_view leaf);
+/// "wall 'bottom' (wall[0])".
+std::string wall_text(const Case& c, std::size_t k);
+
+/// Checks of curved and turning walls and of the fluid region (wall_checks.cpp), run by
+/// run_cross_checks: an arc's sweep, size and place (check_arc_wall, from check_walls), arcs on
+/// other walls, turning walls inside the domain and joined only to walls turning with them, and
+/// every chain closed or ending on the domain's edge.
+void check_arc_wall(const Case& c, const LoadContext& ctx, std::size_t k);
+void check_arc_overlap(const Case& c, const LoadContext& ctx);
+void check_turning_walls(const Case& c, const LoadContext& ctx);
+void check_region_closed(const Case& c, const LoadContext& ctx);
+void check_spin_up(const Case& c, const LoadContext& ctx);
+
 /// Consistency checks between keys (domain, walls, periodic width, bodies, ...); throw CaseError.
 void run_cross_checks(const Case& c, const LoadContext& ctx);
 

@@ -221,6 +221,12 @@ Case load_case_text(std::string_view text, const std::filesystem::path& source,
   size_arrays(root, c);
   for (const KeySpec& spec : case_schema())
     for (std::size_t i = 0; i < element_count(spec, c); ++i) read_key(root, spec, i, c, ctx);
+  // An arc's end points, so that the checks of joints and chains read every wall's ends alike.
+  for (WallSpec& w : c.walls)
+    if (w.shape == WallShape::Arc) {
+      w.from = w.piece().start();
+      w.to = w.piece().end();
+    }
   check_groups(c, ctx);
   check_unique(c, ctx);
   case_detail::run_cross_checks(c, ctx);

@@ -254,7 +254,7 @@ std::vector<KeySpec> make_schema() {
   const auto W = &Case::walls;
   const auto P = &Case::probes;
   const auto B = &Case::bodies;
-  const std::string shape = "body[].shape", motion = "body[].motion";
+  const std::string shape = "body[].shape", motion = "body[].motion", wall_shape = "wall[].shape";
   return {
       // top level
       string_key("name", required(), "Name of the case; the default run directory is `runs/<name>`.",
@@ -377,10 +377,12 @@ std::vector<KeySpec> make_schema() {
       real_key("guard.rho_max_ratio", "-", def(2.0), gt(1),
                "The run stops when a density exceeds this multiple of rho0.", field(&Case::rho_max_ratio)),
       // [validation]
-      choice_key("validation.exact", {"none", "couette", "poiseuille"}, def(std::string{"none"}),
-                 "Exact solution to compare with: probes get a vx_exact column and summary.json the L2 "
-                 "profile error (start-up channel flows along x between walls at domain.min.y and "
-                 "domain.max.y).",
+      choice_key("validation.exact", {"none", "couette", "poiseuille", "spin_up"}, def(std::string{"none"}),
+                 "Exact solution to compare with: probes get vx_exact and vy_exact columns and summary.json the L2 "
+                 "profile error. couette, poiseuille: start-up channel flows along x between walls at domain.min.y "
+                 "and domain.max.y (error of vx); spin_up: fluid at rest in a circular container (one full-circle "
+                 "arc wall) that starts turning at wall[].omega about its centre at t = 0 (error of the velocity "
+                 "vector).",
                  &Case::exact),
       // [analysis]
       vec2_key("analysis.reference_velocity", "m/s", def(zero, "[0, 0] (none)"),
@@ -432,12 +434,38 @@ std::vector<KeySpec> make_schema() {
       // [[wall]]
       string_key("wall[].name", per_index(wall_name, "wall<k> (k = index from 0)"),
                  "Name of the wall in output and messages.", member(W, &WallSpec::name), /*name=*/true),
-      vec2_key("wall[].from", "m", required(),
-               "Start of the segment; the fluid lies on the left walking from `from` to `to`.",
-               member(W, &WallSpec::from)),
-      vec2_key("wall[].to", "m", required(), "End of the segment.", member(W, &WallSpec::to)),
-      vec2_key("wall[].velocity", "m/s", def(zero), "Sliding velocity; must be parallel to to - from.",
+      choice_member("wall[].shape", {"segment", "arc"}, def(std::string{"segment"}),
+                    "A straight segment (from, to) or a circular arc (center, radius, start_angle, end_angle).",
+                    W, &WallSpec::shape),
+      used_when(vec2_key("wall[].from", "m", required(),
+                         "Start of the segment; the fluid lies on the left walking from `from` to `to`.",
+                         member(W, &WallSpec::from)),
+                wall_shape, {"segment"}),
+      used_when(vec2_key("wall[].to", "m", required(), "End of the segment.", member(W, &WallSpec::to)),
+                wall_shape, {"segment"}),
+      used_when(vec2_key("wall[].center", "m", required(), "Centre of the arc's circle.", member(W, &WallSpec::center)),
+                wall_shape, {"arc"}),
+      used_when(real_key("wall[].radius", "m", required(), gt(0), "Radius of the arc.", member(W, &WallSpec::radius)),
+                wall_shape, {"arc"}),
+      used_when(real_key("wall[].start_angle", "rad", required(), any(),
+                         "Angle of the arc's start, counter-clockwise from +x about the centre.",
+                         member(W, &WallSpec::start_angle)),
+                wall_shape, {"arc"}),
+      used_when(real_key("wall[].end_angle", "rad", required(), any(),
+                         "Angle of the arc's end. end_angle > start_angle turns counter-clockwise, with the fluid "
+                         "inside the circle (a container); end_angle < start_angle clockwise, fluid outside; "
+                         "|end_angle - start_angle| = 2 pi (6.283185307179586) is a full circle.",
+                         member(W, &WallSpec::end_angle)),
+                wall_shape, {"arc"}),
+      vec2_key("wall[].velocity", "m/s", def(zero), "Sliding velocity of a segment; must be parallel to to - from.",
                member(W, &WallSpec::velocity)),
+      real_key("wall[].omega", "rad/s", def(0.0), any(),
+               "Rate at which the wall turns rigidly about wall[].pivot (counter-clockwise), impulsively from t = 0: "
+               "a rotating drum, the outer cylinder of a Couette cell. Walls that share an end point turn together.",
+               member(W, &WallSpec::omega)),
+      vec2_key("wall[].pivot", "m", def(zero), "Point the wall turns about when omega is not 0 (an arc turning "
+               "about its own centre: its center).",
+               member(W, &WallSpec::pivot)),
       // [[probe]]
       string_key("probe[].name", required(),
                  "Name of the probe; it writes `probe_<name>.csv` (a line probe also `flow_<name>.csv`).",
@@ -570,13 +598,16 @@ std::vector<SectionSpec> make_sections() {
                     "tuning (default), or the paper's repulsion P.38 generalised to the closest-surface "
                     "distance."),
       array_section("wall", &Case::walls,
-                    "Straight wall segments, one [[wall]] table each; list a closed box counter-clockwise. Checked at "
-                    "load: a wall on an edge of the domain has the fluid (its left side) inside; walls that meet "
+                    "Walls, one [[wall]] table each: straight segments and circular arcs, joined head to tail into "
+                    "chains; list a closed container counter-clockwise. The fluid fills the region on the left of "
+                    "the walls (and up to the domain's edges). Checked at load: a wall's chain ends only on the "
+                    "domain's edge or where it closes; a wall on an edge of the domain has the fluid (its left side) inside; walls that meet "
                     "share an end point, one's `to` being the next one's `from`, at most two per point (ends "
                     "closer than d0/2 must be equal); a wall is at least d0/2 long; no wall lies on a periodic "
                     "edge, overlaps another on the same line, or comes within d0/2 of a body (a fixed body may "
                     "stand on a wall with a flat side); a wall with a velocity slides along itself, so it must run "
-                    "along a periodic axis and share no end point with another wall."),
+                    "along a periodic axis and share no end point with another wall; a turning wall stays in the "
+                    "domain and shares end points only with walls turning with it."),
       array_section("probe", &Case::probes,
                     "Probes, one [[probe]] table each: velocity and pressure interpolated at a line of points or "
                     "at a list of points, by moving least squares over the fluid and surface particles (exact for "

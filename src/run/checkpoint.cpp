@@ -194,7 +194,7 @@ void check_checkpoint_fits_case(const Checkpoint& k, const Case& c, const std::f
     const RigidGroup& G = k.groups[g];
     if (g < nw) {
       const WallSpec& w = c.walls[g];
-      const Motion motion = norm(w.velocity) > 0 ? Motion::Prescribed : Motion::Fixed;
+      const Motion motion = norm(w.velocity) > 0 || w.omega != 0 ? Motion::Prescribed : Motion::Fixed;
       if (!G.is_wall || G.name != w.name || G.motion != motion) fail(fmt::format("rigid group {} is not wall '{}'", g, w.name));
     } else {
       const BodySpec& b = c.bodies[g - nw];

@@ -62,16 +62,30 @@ void channel_geometry(const Case& c, double& L, double& V0) {
 }
 }  // namespace
 
-std::optional<double> exact_vx(const Case& c, Vec2 x, double t) {
+std::optional<Vec2> exact_velocity(const Case& c, Vec2 x, double t) {
+  if (c.exact == ExactSolution::SpinUp) {
+    const WallSpec& w = c.walls.at(0);  // the container (checked at load)
+    const Vec2 r = x - w.center;
+    const double rn = norm(r);
+    if (rn == 0) return Vec2{};
+    const double u = analytic::spin_up_velocity(std::min(rn, w.radius), t, w.radius, w.omega, c.nu);
+    return (u / rn) * Vec2{-r.y, r.x};
+  }
   double L, V0;
   channel_geometry(c, L, V0);
   const double y = x.y - c.domain_min.y;
   switch (c.exact) {
-    case ExactSolution::Couette: return analytic::couette_startup(y, t, L, V0, c.nu);
-    case ExactSolution::Poiseuille: return analytic::poiseuille_startup(y, t, L, c.body_force.x, c.nu);
+    case ExactSolution::Couette: return Vec2{analytic::couette_startup(y, t, L, V0, c.nu), 0};
+    case ExactSolution::Poiseuille: return Vec2{analytic::poiseuille_startup(y, t, L, c.body_force.x, c.nu), 0};
+    case ExactSolution::SpinUp:
     case ExactSolution::None: break;
   }
   return std::nullopt;
+}
+
+double exact_error2(const Case& c, Vec2 v, Vec2 exact) {
+  const Vec2 e = v - exact;
+  return c.exact == ExactSolution::SpinUp ? norm2(e) : e.x * e.x;
 }
 
 std::optional<double> particle_profile_error(const Solver& s, const Case& c, const io::StopCheck& stop) {
@@ -81,14 +95,14 @@ std::optional<double> particle_profile_error(const Solver& s, const Case& c, con
   std::size_t n = 0;
   for (std::size_t i = P.n_boundary; i < P.size(); ++i) {
     if (stop && (i - P.n_boundary) % 256 == 0 && stop()) return std::nullopt;
-    const double e = P.v[i].x - *exact_vx(c, P.x[i], s.time());
-    err2 += e * e;
+    err2 += exact_error2(c, P.v[i], *exact_velocity(c, P.x[i], s.time()));
     ++n;
   }
   return n ? std::optional<double>(std::sqrt(err2 / n) / exact_peak_speed(c)) : std::nullopt;
 }
 
 double exact_peak_speed(const Case& c) {
+  if (c.exact == ExactSolution::SpinUp) return std::fabs(c.walls.at(0).omega) * c.walls.at(0).radius;
   double L, V0;
   channel_geometry(c, L, V0);
   if (c.exact == ExactSolution::Poiseuille) return std::fabs(c.body_force.x) * L * L / (8 * c.nu);
@@ -100,14 +114,14 @@ double exact_peak_speed(const Case& c) {
 namespace {
 std::vector<std::string> probe_columns(const Case& c) {
   std::vector<std::string> cols{"time", "x", "y", "vx", "vy", "p"};
-  if (c.exact != ExactSolution::None) cols.push_back("vx_exact");
+  if (c.exact != ExactSolution::None) cols.insert(cols.end(), {"vx_exact", "vy_exact"});
   return cols;
 }
 
 /// The units of probe_columns(c), in the same order.
 std::vector<std::string> probe_units(const Case& c) {
   std::vector<std::string> units{"s", "m", "m", "m/s", "m/s", "Pa"};
-  if (c.exact != ExactSolution::None) units.push_back("m/s");
+  if (c.exact != ExactSolution::None) units.insert(units.end(), {"m/s", "m/s"});
   return units;
 }
 }  // namespace
@@ -152,7 +166,7 @@ std::optional<Failure> ProbeWriter::write(const Solver& s) {
     if (stop_ && stop_()) throw io::Cancelled();
   };
   const bool exact = case_.exact != ExactSolution::None;
-  const std::size_t np = points_.size(), nc = exact ? 7 : 6;
+  const std::size_t np = points_.size(), nc = exact ? 8 : 6;
   const std::vector<std::string> names = probe_columns(case_);
   // Interpolated in chunks (each point on its own, so the values do not depend on the chunking),
   // polling the stop check between chunks and, with the exact series (slow at early times), per point.
@@ -174,9 +188,9 @@ std::optional<Failure> ProbeWriter::write(const Solver& s) {
       values.insert(values.end(), {s.time(), points_[k].x, points_[k].y, a.v.x, a.v.y, a.p});
       if (exact) {
         poll();
-        const double ex = *exact_vx(case_, points_[k], s.time());
-        values.push_back(ex);
-        err2 += (a.v.x - ex) * (a.v.x - ex);
+        const Vec2 ex = *exact_velocity(case_, points_[k], s.time());
+        values.insert(values.end(), {ex.x, ex.y});
+        err2 += exact_error2(case_, a.v, ex);
       }
       const std::vector<double> row(values.end() - static_cast<std::ptrdiff_t>(nc), values.end());
       if (auto f = non_finite(row, names, fmt::format("probe '{}' (point {})", spec_.name, k), points_[k])) return f;
@@ -198,11 +212,11 @@ std::optional<Failure> ProbeWriter::write(const Solver& s) {
 namespace {
 const std::vector<std::string> kBodyColumns{"time", "body", "x",   "y",   "angle", "vx",  "vy",  "omega", "fx",
                                             "fy",   "torque", "fpx", "fpy", "fvx",   "fvy", "fcx", "fcy"};
-const std::vector<std::string> kWallColumns{"time", "wall", "fx", "fy", "fpx", "fpy", "fvx", "fvy"};
+const std::vector<std::string> kWallColumns{"time", "wall", "fx", "fy", "fpx", "fpy", "fvx", "fvy", "torque"};
 // Units of the columns above. In 2D a force is per unit depth (N/m) and a torque N m/m.
 const std::vector<std::string> kBodyUnits{"s",   "-",   "m",   "m",   "rad", "m/s", "m/s", "rad/s", "N/m",
                                           "N/m", "N m/m", "N/m", "N/m", "N/m", "N/m", "N/m", "N/m"};
-const std::vector<std::string> kWallUnits{"s", "-", "N/m", "N/m", "N/m", "N/m", "N/m", "N/m"};
+const std::vector<std::string> kWallUnits{"s", "-", "N/m", "N/m", "N/m", "N/m", "N/m", "N/m", "N m/m"};
 }  // namespace
 
 const std::vector<std::string> kCoefficientColumns{"time", "body", "re", "re_body", "cd", "cl", "cm"};
@@ -252,7 +266,7 @@ std::optional<Failure> BodyHistoryWriter::write(const Solver& s) {
     auto& rows = is_wall ? walls : bodies;
     if (is_wall)
       rows.push_back({s.time(), static_cast<double>(wall++), f.x, f.y, g.force_pressure.x, g.force_pressure.y,
-                      g.force_viscous.x, g.force_viscous.y});
+                      g.force_viscous.x, g.force_viscous.y, g.torque});
     else
       rows.push_back({s.time(), static_cast<double>(g.body), g.pos.x, g.pos.y, g.angle, g.vel.x, g.vel.y, g.omega, f.x,
                       f.y, g.torque, g.force_pressure.x, g.force_pressure.y, g.force_viscous.x, g.force_viscous.y,

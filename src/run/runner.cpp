@@ -316,13 +316,14 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
                       "isolated particles left out of P.20 {}",
                       cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.wall_pressure_extrapolated,
                       cnt.normal_fallback, cnt.surface_pushed, cnt.gap_squeezed, cnt.isolated_left_out));
+  const char* compared = c.exact == ExactSolution::SpinUp ? "velocity" : "vx";
   if (particle_error)
-    rep.say(fmt::format("L2 error of the fluid particles' vx against the exact solution: {:.4f} % of the peak speed",
-                        100 * *particle_error));
+    rep.say(fmt::format("L2 error of the fluid particles' {} against the exact solution: {:.4f} % of the peak speed",
+                        compared, 100 * *particle_error));
   for (const auto& p : out.probes())
     if (auto e = p->last_error())
-      rep.say(fmt::format("probe '{}' (MLS-interpolated): L2 error of vx {:.4f} % of the peak speed at t = {:.6g} s",
-                          p->spec().name, 100 * *e, solver.time()));
+      rep.say(fmt::format("probe '{}' (MLS-interpolated): L2 error of {} {:.4f} % of the peak speed at t = {:.6g} s",
+                          p->spec().name, compared, 100 * *e, solver.time()));
   // Plots of every run that has data to show: completed, failed (up to the failure: where it went
   // wrong is what one wants to see) and interrupted. An interrupted run has stopped and saved its
   // state, so its stop request is cleared: a second Ctrl-C stops the plotting.

@@ -7,8 +7,12 @@
 #include <stdexcept>
 
 #include "particula/fluid/fluid.hpp"
+#include "scene_walls.hpp"
 
 namespace particula {
+
+using scene_detail::corner_volume_factor;
+using scene_detail::SurfacePoint;
 
 Shape body_shape(const BodySpec& b);
 Vec2 body_position(const BodySpec& b, const Shape& s);
@@ -46,10 +50,7 @@ PhysicsParams physics_params(const Case& c) {
   p.collision_max_overlap = c.collision_max_overlap;
   p.collision_lubrication = c.collision_lubrication;
   p.collision_lubrication_range = c.collision_lubrication_range;
-  for (const auto& w : c.walls) {
-    const Vec2 t = (w.to - w.from) / norm(w.to - w.from);
-    p.walls.push_back({w.from, w.to, {-t.y, t.x}});
-  }
+  for (const auto& w : c.walls) p.walls.push_back(w.piece());
   for (const auto& b : c.bodies) {
     BodyParams bp{b.name, body_shape(b), {}, b.motion, b.velocity, b.omega, b.schedule};
     bp.samples = bp.shape.sample_surface(c.d0);
@@ -78,103 +79,6 @@ Vec2 body_position(const BodySpec& b, const Shape& s) {
 
 namespace {
 
-/// Distance from point p to the segment [a, b].
-real segment_distance(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 ab = b - a;
-  const real L2 = norm2(ab);
-  real s = L2 > 0 ? dot(p - a, ab) / L2 : 0;
-  s = std::fmax(0, std::fmin(1, s));
-  return norm(p - (a + s * ab));
-}
-
-Vec2 left_normal(const WallSpec& w) {
-  const Vec2 t = (w.to - w.from) / norm(w.to - w.from);
-  return {-t.y, t.x};
-}
-
-bool same_point(const Domain& d, Vec2 a, Vec2 b, real tol) { return norm(d.separation(a, b)) < tol; }
-
-/// One sampled surface point of a wall before it is placed in the particle arrays.
-struct SurfacePoint {
-  Vec2 x, normal;
-  real ds;
-  bool corner;
-  Vec2 corner_normal2;  // the other wall's normal at a corner
-};
-
-/// Samples wall w at spacing ~d0: points from + k (to - from)/n for k = 0..n-1, plus the end
-/// point unless another wall starts there (closed polygons) or it is the periodic image of
-/// the start. A point shared with the previous wall (a corner) gets the mean normal.
-std::vector<SurfacePoint> sample_wall(const Case& c, const Domain& dom, std::size_t w) {
-  const WallSpec& ws = c.walls[w];
-  const real len = norm(ws.to - ws.from);
-  const int n = std::max(1, static_cast<int>(std::lround(len / c.d0)));
-  const real ds = len / n;
-  const Vec2 nrm = left_normal(ws);
-  const real tol = 1e-6 * c.d0;
-  std::vector<SurfacePoint> pts;
-  for (int k = 0; k <= n; ++k) {
-    const Vec2 x = ws.from + (static_cast<real>(k) / n) * (ws.to - ws.from);
-    SurfacePoint sp{x, nrm, ds, false, {}};
-    if (k == n) {
-      if (same_point(dom, x, ws.from, tol)) break;
-      bool starts_other = false;
-      for (std::size_t o = 0; o < c.walls.size(); ++o)
-        if (o != w && same_point(dom, x, c.walls[o].from, tol)) starts_other = true;
-      if (starts_other) break;
-    }
-    if (k == 0) {
-      for (std::size_t o = 0; o < c.walls.size(); ++o)
-        if (o != w && same_point(dom, x, c.walls[o].to, tol)) {
-          const Vec2 n2 = left_normal(c.walls[o]);
-          const Vec2 mean = nrm + n2;
-          if (norm(mean) > 1e-12) {
-            sp.normal = mean / norm(mean);
-            sp.corner = true;
-            sp.corner_normal2 = n2;
-          }
-        }
-    }
-    pts.push_back(sp);
-  }
-  return pts;
-}
-
-/// Dummy particles of the baseline boundary (method.md section 6, last paragraph): `layers`
-/// rows behind each surface point along -n; a corner gets the full square block.
-std::vector<std::pair<Vec2, std::size_t>> dummy_points(const std::vector<SurfacePoint>& surf, const WallSpec& ws,
-                                                       real d0, int layers) {
-  std::vector<std::pair<Vec2, std::size_t>> out;
-  const Vec2 n1 = left_normal(ws);
-  for (std::size_t s = 0; s < surf.size(); ++s) {
-    const auto& sp = surf[s];
-    if (sp.corner) {
-      for (int a = 0; a <= layers; ++a)
-        for (int b = 0; b <= layers; ++b)
-          if (a != 0 || b != 0) out.push_back({sp.x - (a * d0) * n1 - (b * d0) * sp.corner_normal2, s});
-    } else {
-      for (int k = 1; k <= layers; ++k) out.push_back({sp.x - (k * d0) * sp.normal, s});
-    }
-  }
-  return out;
-}
-
-/// Volume factor of a corner particle. A single layer stands for the solid behind it. With
-/// the volume d0 ds of a flat-wall particle the zeroth kernel moment s_i = sum_j w_j gradW_ij
-/// of the fluid next to a straight wall nearly vanishes (|s| = 0.02/d0 for h = 2.6 d0), so a
-/// fluid particle pushed against the wall is compressed rather than sucked in (with the
-/// difference form of the renormalized gradient a particle whose s points away from the wall
-/// gets lower pressure as it approaches and is pulled further in). At a corner where the
-/// fluid angle is 90 degrees the same moment at the corner fluid particle is 0.22/d0 with a
-/// unit factor and 0.03/d0 with a factor 2 (computed on the regular lattice): we scale the
-/// corner volume linearly in the solid wedge angle, 1 for a flat wall and 2 for a right-angled
-/// corner (docs/method-notes.md). Without it a loaded box corner blows up.
-real corner_volume_factor(Vec2 n1, Vec2 n2) {
-  const real fluid_angle = M_PI - std::acos(std::fmax(-1.0, std::fmin(1.0, dot(n1, n2))));
-  const real solid_angle = 2 * M_PI - fluid_angle;
-  return std::fmax(1.0, 2 * solid_angle / M_PI - 1);
-}
-
 /// A fixed body's surface sample as placed in the particle arrays (world-frame normal).
 struct PlacedSample {
   bool keep = true;
@@ -195,8 +99,9 @@ PlacedSample place_on_walls(const SurfaceSample& smp, Vec2 x, real cth, real sth
   PlacedSample out{true, false, rotate(smp.normal, cth, sth), 1};
   constexpr real antiparallel = -0.999;
   for (const auto& ws : c.walls) {
-    if (segment_distance(x, ws.from, ws.to) >= 0.5 * c.d0) continue;
-    const Vec2 nw = left_normal(ws);
+    const WallNearest near = ws.piece().nearest(x);
+    if (near.distance >= 0.5 * c.d0) continue;
+    const Vec2 nw = near.normal;
     if (!smp.corner) {
       if (dot(out.normal, nw) < antiparallel) out.keep = false;
       continue;
@@ -303,27 +208,30 @@ Scene build_scene(const Case& c) {
     RigidGroup g;
     g.name = ws.name;
     g.is_wall = true;
-    g.motion = norm(ws.velocity) > 0 ? Motion::Prescribed : Motion::Fixed;
+    g.motion = norm(ws.velocity) > 0 || ws.omega != 0 ? Motion::Prescribed : Motion::Fixed;
     g.vel = ws.velocity;
+    g.omega = ws.omega;
+    // A turning wall's frame is centred on its pivot; other walls' frame is the world frame.
+    if (ws.omega != 0) g.pos = g.pos0 = ws.pivot;
     g.first = bx.size();
-    auto surf = sample_wall(c, dom, w);
+    auto surf = scene_detail::sample_wall(c, dom, w);
     // Wall stretches covered by a body (an obstacle sitting on the wall) are not wall surface.
     std::erase_if(surf, [&](const SurfacePoint& sp) { return near_body(sp.x); });
     const std::size_t first_surface = bx.size();
     for (const auto& sp : surf) {
       bx.push_back(sp.x);
-      blocal.push_back(sp.x);  // walls: body frame = world frame (the group starts at the origin)
+      blocal.push_back(sp.x - g.pos0);
       bn.push_back(sp.normal);
       bds.push_back(sp.ds);
-      bvol.push_back(sp.ds * d0 * (sp.corner ? corner_volume_factor(left_normal(ws), sp.corner_normal2) : 1.0));
+      bvol.push_back(sp.ds * d0 * (sp.corner ? corner_volume_factor(sp.wall_normal, sp.corner_normal2) : 1.0));
       bk.push_back(Kind::Boundary);
       bsrc.push_back(-1);
       bgroup.push_back(static_cast<std::int32_t>(w));
     }
     if (c.boundary == BoundaryModel::Dummy) {
-      for (const auto& [x, s] : dummy_points(surf, ws, d0, dummy_layers)) {
+      for (const auto& [x, s] : scene_detail::dummy_points(surf, d0, dummy_layers)) {
         bx.push_back(x);
-        blocal.push_back(x);
+        blocal.push_back(x - g.pos0);
         bn.push_back(surf[s].normal);
         bds.push_back(0);
         bvol.push_back(d0 * d0);
@@ -430,10 +338,11 @@ Scene build_scene(const Case& c) {
     for (int ix = 0; ix < nx; ++ix) {
       const Vec2 x{dom.lo.x + (ix + 0.5) * sc.dx, dom.lo.y + (iy + 0.5) * sc.dy};
       bool keep = true;
-      // Fluid within d0/2 of a solid surface is removed (a lattice point exactly d0/2 from a
-      // wall lying on the box edge stays).
-      for (const auto& ws : c.walls)
-        if (segment_distance(x, ws.from, ws.to) < 0.5 * d0 * (1 - 1e-9)) keep = false;
+      // Fluid fills the region on the left of the walls, and not within d0/2 of a solid surface
+      // (a lattice point exactly d0/2 from a wall lying on the box edge stays).
+      if (scene_detail::wall_distance(sc.params.walls, dom, x) < 0.5 * d0 * (1 - 1e-9) ||
+          !scene_detail::on_fluid_side(sc.params.walls, dom, x))
+        keep = false;
       const real fraction = exact_fill ? cell_fluid_fraction(x, sc.dx, sc.dy, body_gap) : real(1);
       if (keep && near_body(x)) {
         if (exact_fill && fraction > 0) band.push_back({ix, iy, fraction});

@@ -178,8 +178,7 @@ std::optional<Failure> Solver::find_contacts(real reach) {
   for (const std::size_t a : body_groups_) {
     if (!is_free(a)) continue;
     for (std::size_t w = 0; w < prm_.walls.size(); ++w) {
-      const WallLine& wl = prm_.walls[w];
-      const Contact c = wall_contact_exact(placed(prm_, groups_[a]), wl.from, wl.to, wl.normal);
+      const Contact c = wall_contact_exact(placed(prm_, groups_[a]), wall_now(w));
       if (c.gap > 1e299) continue;
       if (c.gap < overlap_limit(prm_)) return overlap_failure(groups_[a], "wall '" + groups_[w].name + "'", c.gap);
       if (c.gap < reach) contacts_.push_back({a, w, c, 0});  // wall groups come first, in wall order
@@ -299,8 +298,8 @@ std::optional<Failure> Solver::paper_collisions() {
       gb.force_collision -= F;
     }
     // walls, as the mirror image of the body (gap to the image = twice the gap to the wall)
-    for (const auto& w : prm_.walls) {
-      Contact c = wall_contact(pa, w.from, w.to, w.normal);
+    for (std::size_t w = 0; w < prm_.walls.size(); ++w) {
+      Contact c = wall_contact(pa, wall_now(w));
       if (c.gap > 1e299) continue;
       if (c.gap < overlap_limit(prm_) && ga.motion == Motion::Free) return overlap_failure(ga, "a wall", c.gap);
       c.gap *= 2;

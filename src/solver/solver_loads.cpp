@@ -36,23 +36,26 @@ void Solver::group_loads() {
   }
 }
 
+WallPiece Solver::wall_now(std::size_t k) const {
+  const RigidGroup& g = groups_[k];
+  if (g.angle == g.angle0) return prm_.walls[k];
+  return prm_.walls[k].moved(g.pos0, g.angle - g.angle0, Vec2{});
+}
+
 bool Solver::offer_near_solid(Vec2 x, real reach, std::size_t k, NearSolid& out) const {
   const RigidGroup& g = groups_[k];
   real d = 0;
   Vec2 n;
   if (g.is_wall) {
-    // Distance to the segment, measured from its midpoint so that a wall spanning a periodic
-    // side is found from either end.
-    const WallLine& w = prm_.walls[k];
-    const Vec2 t = w.to - w.from;
-    const real len = norm(t);
-    const Vec2 e = t / len;
-    const Vec2 rel = domain_.separation(x, 0.5 * (w.from + w.to));
-    const real along = std::clamp(dot(rel, e), -0.5 * len, 0.5 * len);
-    const Vec2 off = rel - along * e;
-    d = norm(off);
+    // Distance to the wall, from x's periodic image nearest the wall's middle (an arc's
+    // centre), so that a wall spanning a periodic side is found from either end.
+    const WallPiece w = wall_now(k);
+    const Vec2 mid = w.is_arc() ? w.center() : w.point_at(0.5);
+    const Vec2 xi = mid + domain_.separation(x, mid);
+    const WallNearest near = w.nearest(xi);
+    d = near.distance;
     if (!(d < reach)) return false;
-    n = d > 1e-12 * len ? off / d : w.normal;
+    n = d > 1e-12 * w.length() ? (xi - near.point) / d : near.normal;
   } else {
     const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
     const Vec2 rel = domain_.separation(x, g.pos);
@@ -246,18 +249,22 @@ void Solver::smooth_pressure_load(const LoadArrays& a, std::size_t k, Vec2& forc
   force = Vec2{};
   torque = 0;
   if (g.is_wall) {
-    // -n int P_h ds over the segment (4-point Gauss-Legendre: P_h is exponential along it, with
-    // an exponent below 1e-2 in a weakly compressible fluid), and its moment about the group.
-    const WallLine& w = prm_.walls[k];
-    const real len = norm(w.to - w.from);
+    // -n int P_h ds over the wall (4-point Gauss-Legendre on a segment, and on each of the
+    // pieces of at most pi/8 of an arc: P_h is exponential along it, with an exponent below 1e-2
+    // in a weakly compressible fluid), and its moment about the group.
+    const WallPiece w = wall_now(k);
     constexpr real xg[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
     constexpr real wg[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
-    for (int q = 0; q < 4; ++q) {
-      const Vec2 x = w.from + (0.5 * (1 + xg[q])) * (w.to - w.from);
-      const Vec2 t = (-0.5 * len * wg[q] * smooth_pressure(a, gk, x)) * w.normal;
-      force += t;
-      torque += cross(domain_.separation(x, g.pos), t);
-    }
+    const int pieces = w.is_arc() ? static_cast<int>(std::ceil(std::fabs(w.sweep()) / (M_PI / 8))) : 1;
+    const real piece_len = w.length() / pieces;
+    for (int m = 0; m < pieces; ++m)
+      for (int q = 0; q < 4; ++q) {
+        const real s = (m + 0.5 * (1 + xg[q])) / pieces;
+        const Vec2 x = w.point_at(s);
+        const Vec2 t = (-0.5 * piece_len * wg[q] * smooth_pressure(a, gk, x)) * w.normal_at(s);
+        force += t;
+        torque += cross(domain_.separation(x, g.pos), t);
+      }
     return;
   }
   const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];

@@ -14,6 +14,7 @@
 
 #include "particula/core/types.hpp"
 #include "particula/geometry/shape.hpp"
+#include "particula/geometry/wall_piece.hpp"
 #include "particula/neighbors/domain.hpp"
 
 namespace particula {
@@ -44,16 +45,17 @@ struct PlacedBody {
 /// to the sampling spacing; exact for two circles (the point is then the middle of the gap).
 Contact body_contact(const PlacedBody& a, const PlacedBody& b, const Domain& domain);
 
-/// Contact of a body with a straight wall segment whose fluid side is given by `normal`
-/// (normal points from the wall into the fluid, i.e. towards the body), from the body's surface
-/// samples: the gap is resolved to the sampling (the paper's path).
-Contact wall_contact(const PlacedBody& a, Vec2 from, Vec2 to, Vec2 normal);
+/// Contact of a body with a wall (a segment or an arc, the fluid on its left; the contact normal
+/// points from the wall into the fluid, i.e. towards the body), from the body's surface
+/// samples: the gap is resolved to the sampling (the paper's path). Beyond a wall's ends the
+/// wall does not act (a neighbouring wall does).
+Contact wall_contact(const PlacedBody& a, const WallPiece& wall);
 
 /// The same, exact for a circle: the gap from its centre and the point straight below it, so
 /// that the normal force passes through the centre (a lowest sample beside the bottom would give
 /// a resting disc a spurious torque of up to F_n R sin(pi ds / 2 pi R)). Other shapes: as
 /// wall_contact.
-Contact wall_contact_exact(const PlacedBody& a, Vec2 from, Vec2 to, Vec2 normal);
+Contact wall_contact_exact(const PlacedBody& a, const WallPiece& wall);
 
 // ---------------------------------------------------------------------------------------------
 // The paper's repulsion (collision.model = "paper")

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "particula/core/types.hpp"
+#include "particula/geometry/wall_piece.hpp"
 
 namespace particula {
 
@@ -24,16 +25,30 @@ enum class NormalModel { Kernel, Analytic };
 enum class ForceModel { Paper, Momentum };
 enum class InitialFlow { Rest, TaylorGreen, Couette };
 /// Exact solution a case is compared with (probes get a vx_exact column, summary.json the error).
-enum class ExactSolution { None, Couette, Poiseuille };
+enum class ExactSolution { None, Couette, Poiseuille, SpinUp };
 /// Solid-solid contact law (docs/method-notes.md, "Contacts").
 enum class ContactModel { SpringDashpot, Paper };
 
-/// A straight wall segment. The fluid lies on its LEFT when walking from `from` to `to`
-/// (so a closed box is listed counter-clockwise). It may slide along itself at `velocity`.
+enum class WallShape { Segment, Arc };
+
+/// A wall: a straight segment or a circular arc. The fluid lies on its LEFT when walking from
+/// its start to its end (so a closed container is listed counter-clockwise, and an arc turning
+/// counter-clockwise, end_angle > start_angle, has the fluid inside its circle). A segment may
+/// slide along itself at `velocity`; any wall may turn rigidly about `pivot` at the rate `omega`.
 struct WallSpec {
   std::string name;
-  Vec2 from, to;
-  Vec2 velocity;  // must be tangential (parallel to to - from)
+  Vec2 from, to;   // segment; for an arc its end points (derived at load)
+  Vec2 velocity;   // must be tangential (parallel to to - from)
+  WallShape shape = WallShape::Segment;
+  Vec2 center{};   // arc
+  real radius = 0, start_angle = 0, end_angle = 0;
+  real omega = 0;  // rigid rotation rate about `pivot` (rad/s, counter-clockwise), from t = 0
+  Vec2 pivot{};
+
+  WallPiece piece() const {
+    return shape == WallShape::Arc ? WallPiece::arc(center, radius, start_angle, end_angle)
+                                   : WallPiece::segment(from, to);
+  }
 };
 
 /// A probe is a line (`points` equally spaced points from `from` to `to`, both ends included)

@@ -103,10 +103,13 @@ class BodyHistoryWriter {
   double rho0_ = 0, nu_ = 0;
 };
 
-/// The exact solution the case declares, evaluated at (y, t); nullopt when it has none.
-std::optional<double> exact_vx(const Case& c, Vec2 x, double t);
-/// L2 error of vx over all fluid particles (at their own positions) against the exact
-/// solution, relative to the peak speed; nullopt without an exact solution, or when `stop`
+/// The velocity of the exact solution the case declares at (x, t); nullopt when it has none.
+std::optional<Vec2> exact_velocity(const Case& c, Vec2 x, double t);
+/// The squared error of a velocity against the exact one: of vx for the channel flows (couette,
+/// poiseuille), of the vector for spin_up.
+double exact_error2(const Case& c, Vec2 v, Vec2 exact);
+/// L2 error over all fluid particles (at their own positions) against the exact solution
+/// (exact_error2), relative to the peak speed; nullopt without an exact solution, or when `stop`
 /// (polled every few hundred particles: the series is slow at early times) returns true.
 std::optional<double> particle_profile_error(const Solver& s, const Case& c, const io::StopCheck& stop = {});
 /// Peak speed used to normalize profile errors.

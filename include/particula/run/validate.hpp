@@ -62,6 +62,12 @@ std::vector<ValidationEntry> validation_entries();
 // Checks used by the entries (exposed for tests and future entries).
 /// `profile_error` of summary.json (fluid particles against the case's exact solution) < `limit`.
 std::vector<ValidationCheck> check_profile_error(const std::filesystem::path& run_dir, double limit);
+/// Spin-up in a circular container (validate_spin_up.cpp): the torque of the fluid on the
+/// container (walls.csv) against the exact series at every output time with 0.02 s <= t <= 0.15 s
+/// (while the torque is above 5 % of its value at 0.01 s), worst relative error within
+/// `torque_tol`; and the velocity profile error of summary.json below `profile_limit`.
+std::vector<ValidationCheck> check_spin_up(const std::filesystem::path& run_dir, const Case& c, double torque_tol,
+                                           double profile_limit);
 /// Taylor-Green: peak fluid speed of the last snapshot over the initial amplitude against
 /// exp(-8 pi^2 nu t / L^2), within `rel_tol`.
 std::vector<ValidationCheck> check_taylor_green_decay(const std::filesystem::path& run_dir, const Case& c,

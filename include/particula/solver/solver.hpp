@@ -35,11 +35,6 @@ struct BodyParams {
   std::vector<MotionKnot> schedule;    // prescribed piecewise-linear motion
 };
 
-/// A straight wall for the contact model (fluid on the side of `normal`).
-struct WallLine {
-  Vec2 from, to, normal;
-};
-
 /// Everything the physics needs, in SI units (filled from a Case by the scene builder).
 struct PhysicsParams {
   real d0 = 0, h = 0;
@@ -62,7 +57,7 @@ struct PhysicsParams {
   real rho_min_ratio = 0.5, rho_max_ratio = 2.0;
   int reorder_interval = 50;  // steps between cell reorderings of the fluid block
   std::vector<BodyParams> bodies;
-  std::vector<WallLine> walls;
+  std::vector<WallPiece> walls;  // at t = 0 (a turning wall: Solver::wall_now)
   // contacts (bodies/collision.hpp; docs/method-notes.md, Contacts)
   ContactModel collision_model = ContactModel::SpringDashpot;
   real collision_stiffness = 0;  // spring_dashpot: k_n (0 = derived); paper: k of P.38
@@ -216,6 +211,9 @@ class Solver {
   int near_solids(Vec2 x, real reach, NearSolid* out, int max) const;
   /// Solid k's distance and its gradient at x into `out` when x is within `reach` of it.
   bool offer_near_solid(Vec2 x, real reach, std::size_t k, NearSolid& out) const;
+  /// Wall group k's geometry now (a turning wall rotated about its pivot; a sliding wall runs
+  /// along a periodic axis and keeps its line).
+  WallPiece wall_now(std::size_t k) const;
   /// The bodies binned into cells of (largest bounding radius + reach), once a step.
   void bin_bodies_for_band(real reach);
   std::size_t band_cell(Vec2 x) const;

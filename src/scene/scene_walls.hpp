@@ -1,0 +1,41 @@
+// Walls in the scene (internal to src/scene): their surface samples, the dummy layers of the
+// baseline boundary, the corner volume factor and the region the walls enclose.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "particula/case/case.hpp"
+#include "particula/neighbors/domain.hpp"
+
+namespace particula::scene_detail {
+
+/// One sampled surface point of a wall before it is placed in the particle arrays.
+struct SurfacePoint {
+  Vec2 x, normal;
+  real ds;
+  bool corner;
+  Vec2 corner_normal2;  // the other wall's normal at a corner
+  Vec2 wall_normal;     // this wall's own normal there
+};
+
+/// Samples wall w at spacing ~d0 (a segment's points equally spaced, an arc's equally spaced
+/// in angle with its analytic normals); see scene_walls.cpp.
+std::vector<SurfacePoint> sample_wall(const Case& c, const Domain& dom, std::size_t w);
+
+/// Dummy particles of the baseline boundary: `layers` rows behind each surface point along -n;
+/// a corner gets the full block.
+std::vector<std::pair<Vec2, std::size_t>> dummy_points(const std::vector<SurfacePoint>& surf, real d0, int layers);
+
+/// Volume factor of a corner particle whose two walls have the fluid-side normals n1 and n2.
+real corner_volume_factor(Vec2 n1, Vec2 n2);
+
+/// The region the walls enclose: whether x lies on the fluid side (the left) of the walls, by
+/// the nearest wall point (at a shared end point, the mean of the two walls' normals there).
+/// True everywhere without walls.
+bool on_fluid_side(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x);
+
+/// Distance from x to the nearest wall (through periodic sides), +inf without walls.
+real wall_distance(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x);
+
+}  // namespace particula::scene_detail
