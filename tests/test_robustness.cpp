@@ -366,7 +366,7 @@ TEST_P(RobustnessCases, CoarseLevelFinishesAndPassesItsChecks) {
 /// failures of issue 14, listed with their failure in docs/validation.md. They run (disabled) with
 /// `--gtest_also_run_disabled_tests` and in `particula validate --group robustness`; CI runs the
 /// others. Remove a name here when its case passes.
-const std::set<std::string> kOpenFailures = {"cylinder_channel_re10", "cylinder_channel_re100"};
+const std::set<std::string> kOpenFailures = {"cylinder_channel_re10", "cylinder_channel_re100", "rotating_drum"};
 
 /// Cases too long for CI (minutes each on two cores), run in full (with their checks) by
 /// `particula validate --group robustness`: the bodies need most of their end time to come to rest

@@ -341,7 +341,7 @@ Scene build_scene(const Case& c) {
       // Fluid fills the region on the left of the walls, and not within d0/2 of a solid surface
       // (a lattice point exactly d0/2 from a wall lying on the box edge stays).
       if (scene_detail::wall_distance(sc.params.walls, dom, x) < 0.5 * d0 * (1 - 1e-9) ||
-          !scene_detail::on_fluid_side(sc.params.walls, dom, x))
+          !in_fluid_region(sc.params.walls, dom, x))
         keep = false;
       const real fraction = exact_fill ? cell_fluid_fraction(x, sc.dx, sc.dy, body_gap) : real(1);
       if (keep && near_body(x)) {

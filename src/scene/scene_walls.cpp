@@ -11,14 +11,14 @@ namespace {
 
 bool same_point(const Domain& d, Vec2 a, Vec2 b, real tol) { return norm(d.separation(a, b)) < tol; }
 
-/// x moved to its periodic image nearest the wall's middle (a wall spanning a periodic side is
-/// then found from either end).
+}  // namespace
+
+/// x moved to its periodic image nearest the wall's middle (an arc's centre), so that a wall
+/// spanning a periodic side is found from either end.
 Vec2 image_near(const WallPiece& w, const Domain& dom, Vec2 x) {
   const Vec2 mid = w.is_arc() ? w.center() : w.point_at(0.5);
   return mid + dom.separation(x, mid);
 }
-
-}  // namespace
 
 /// Samples wall w at spacing ~d0: points at fractions k/n of its length for k = 0..n-1, plus
 /// the end point unless another wall starts there (closed chains) or it is the start itself (a
@@ -97,10 +97,17 @@ real corner_volume_factor(Vec2 n1, Vec2 n2) {
   return std::fmax(1.0, 2 * solid_angle / M_PI - 1);
 }
 
+}  // namespace particula::scene_detail
+
+namespace particula {
+
+using scene_detail::image_near;
+
 /// The side of the nearest wall point. Where that point is an end point shared by two walls,
 /// x lies in the cone between the two end normals, and the sign of (x - p).(n1 + n2) is the
 /// side of the chain there (in 2D the pseudo-normal of a vertex decides inside and outside).
-bool on_fluid_side(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x) {
+
+bool in_fluid_region(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x) {
   if (walls.empty()) return true;
   real best = std::numeric_limits<real>::infinity();
   for (const WallPiece& w : walls) best = std::min(best, w.nearest(image_near(w, dom, x)).distance);
@@ -116,6 +123,17 @@ bool on_fluid_side(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 
   }
   return dot(from_point, normal_sum) >= 0;
 }
+
+std::vector<WallPiece> walls_at(const Case& c, real t) {
+  std::vector<WallPiece> walls;
+  for (const WallSpec& w : c.walls)
+    walls.push_back(w.omega != 0 ? w.piece().moved(w.pivot, w.omega * t, Vec2{}) : w.piece());
+  return walls;
+}
+
+}  // namespace particula
+
+namespace particula::scene_detail {
 
 real wall_distance(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x) {
   real d = std::numeric_limits<real>::infinity();

@@ -30,10 +30,8 @@ std::vector<std::pair<Vec2, std::size_t>> dummy_points(const std::vector<Surface
 /// Volume factor of a corner particle whose two walls have the fluid-side normals n1 and n2.
 real corner_volume_factor(Vec2 n1, Vec2 n2);
 
-/// The region the walls enclose: whether x lies on the fluid side (the left) of the walls, by
-/// the nearest wall point (at a shared end point, the mean of the two walls' normals there).
-/// True everywhere without walls.
-bool on_fluid_side(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x);
+/// x moved to its periodic image nearest the wall's middle.
+Vec2 image_near(const WallPiece& w, const Domain& dom, Vec2 x);
 
 /// Distance from x to the nearest wall (through periodic sides), +inf without walls.
 real wall_distance(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x);

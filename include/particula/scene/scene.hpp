@@ -20,6 +20,14 @@ struct Scene {
 };
 
 PhysicsParams physics_params(const Case& c);
+
+/// Whether x lies in the region the walls enclose: on the fluid side (the left) of the nearest
+/// wall point, through periodic sides (at an end point shared by two walls, the side of their
+/// mean normal there); everywhere without walls. The fluid fill of build_scene and the
+/// containment checks of the robustness suite.
+bool in_fluid_region(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x);
+/// A case's walls at time t (a turning wall turned by omega t about its pivot).
+std::vector<WallPiece> walls_at(const Case& c, real t);
 Scene build_scene(const Case& c);
 
 /// A body's shape in its body frame (origin at the area centroid).
