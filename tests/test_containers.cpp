@@ -189,10 +189,10 @@ interval = 0.4
 }
 
 // The spin-up of fluid in a circular container at 10, 20 and 40 particles across the radius
-// (cases/spin_up.toml), to t = 0.1 s: the torque of the fluid on the container converges to the
-// exact series (0.1 s: 4.3 %, 1.3 %, 0.59 % low when written, order 1.44; with c = 0.1 instead
-// of 0.2: 4.1, 1.1, 0.36 %, order 1.75, docs/validation.md), the velocity of every fluid particle
-// is within 0.1 % of omega R at the finest level, and no wall particle is ever a corner.
+// (cases/spin_up.toml), to t = 0.05 s: the torque of the fluid on the container converges to the
+// exact series at second order (+6.6 %, +1.4 %, +0.20 % when written: orders 2.2 and 2.9), the
+// velocity of every fluid particle is within 0.15 % of omega R at the finest level (0.097 %), and no wall
+// particle is ever a corner.
 TEST(Containers, SpinUpTorqueConvergesToTheExactSolution) {
   const real levels[3] = {1e-3, 5e-4, 2.5e-4};
   real err[3];
@@ -200,7 +200,7 @@ TEST(Containers, SpinUpTorqueConvergesToTheExactSolution) {
     const Case c = load_case(kCases / "spin_up.toml", {"resolution.d0=" + std::to_string(levels[k])});
     Scene sc = build_scene(c);
     Solver s(sc.params, sc.domain, sc.particles, sc.groups);
-    const real t_end = 0.1;
+    const real t_end = 0.05;
     while (s.time() < t_end) ASSERT_FALSE(s.step(t_end - s.time()).has_value());
     const WallSpec& w = c.walls[0];
     const real exact = analytic::spin_up_torque(s.time(), w.radius, w.omega, c.mu(), c.nu);
@@ -210,11 +210,11 @@ TEST(Containers, SpinUpTorqueConvergesToTheExactSolution) {
                 levels[k], s.groups()[0].torque, exact, 100 * err[k], 100 * velocity_error);
     EXPECT_EQ(s.counters().wall_pressure_extrapolated, 0) << "a smooth wall has no corners";
     if (k == 2) {
-      EXPECT_LT(velocity_error, 1e-3);
+      EXPECT_LT(velocity_error, 1.5e-3);
     }
   }
-  EXPECT_LT(std::fabs(err[2]), 0.008);
+  EXPECT_LT(std::fabs(err[2]), 0.005);
   const real order = std::log(std::fabs(err[0] / err[2])) / std::log(4.0);
   std::printf("observed order of the torque error: %.2f\n", order);
-  EXPECT_GT(order, 1.3);
+  EXPECT_GT(order, 1.8);
 }
