@@ -212,6 +212,10 @@ TEST(Containers, SpinUpTorqueConvergesToTheExactSolution) {
     if (k == 2) {
       EXPECT_LT(velocity_error, 1.5e-3);
     }
+    // every fluid particle still inside the turning container
+    const std::vector<WallPiece> walls = walls_at(c, s.time());
+    const Particles& P = s.particles();
+    for (std::size_t i = P.n_boundary; i < P.size(); ++i) ASSERT_TRUE(in_fluid_region(walls, s.domain(), P.x[i]));
   }
   EXPECT_LT(std::fabs(err[2]), 0.005);
   const real order = std::log(std::fabs(err[0] / err[2])) / std::log(4.0);
