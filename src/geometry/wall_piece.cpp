@@ -10,6 +10,7 @@ WallPiece WallPiece::segment(Vec2 from, Vec2 to) {
   WallPiece w;
   w.from_ = from;
   w.to_ = to;
+  w.len_ = norm(to - from);
   return w;
 }
 
@@ -19,14 +20,13 @@ WallPiece WallPiece::arc(Vec2 center, real radius, real start, real end) {
   w.radius_ = radius;
   w.start_ = start;
   w.sweep_ = end - start;
+  w.len_ = radius * std::fabs(w.sweep_);
   w.from_ = w.point_at(0);
   w.to_ = w.point_at(1);
   return w;
 }
 
 bool WallPiece::is_full_circle() const { return is_arc() && std::fabs(std::fabs(sweep_) - 2 * M_PI) < 1e-9; }
-
-real WallPiece::length() const { return is_arc() ? radius_ * std::fabs(sweep_) : norm(to_ - from_); }
 
 Vec2 WallPiece::point_at(real s) const {
   if (!is_arc()) return from_ + s * (to_ - from_);
@@ -35,7 +35,7 @@ Vec2 WallPiece::point_at(real s) const {
 }
 
 Vec2 WallPiece::tangent_at(real s) const {
-  if (!is_arc()) return (to_ - from_) / norm(to_ - from_);
+  if (!is_arc()) return (to_ - from_) / len_;
   const real a = start_ + s * sweep_;
   const real dir = sweep_ > 0 ? 1 : -1;
   return dir * Vec2{-std::sin(a), std::cos(a)};

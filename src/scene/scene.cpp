@@ -336,21 +336,14 @@ Scene build_scene(const Case& c) {
   // Signed distance to the solids (negative inside a body or outside the region the walls enclose).
   auto solid_gap = [&](Vec2 x) {
     real g = body_distance(x, sc.params, body_pos, body_angle, dom);
-    if (!sc.params.walls.empty()) {
-      const real dw = scene_detail::wall_distance(sc.params.walls, dom, x);
-      g = std::min(g, in_fluid_region(sc.params.walls, dom, x) ? dw : -dw);
-    }
-    return g;
+    return std::min(g, signed_wall_distance(sc.params.walls, dom, x));
   };
   for (int iy = 0; iy < ny; ++iy)
     for (int ix = 0; ix < nx; ++ix) {
       const Vec2 x{dom.lo.x + (ix + 0.5) * sc.dx, dom.lo.y + (iy + 0.5) * sc.dy};
-      bool keep = true;
       // Fluid fills the region on the left of the walls, and not within d0/2 of a solid surface
       // (a lattice point exactly d0/2 from a wall lying on the box edge stays).
-      if (scene_detail::wall_distance(sc.params.walls, dom, x) < 0.5 * d0 * (1 - 1e-9) ||
-          !in_fluid_region(sc.params.walls, dom, x))
-        keep = false;
+      const bool keep = signed_wall_distance(sc.params.walls, dom, x) >= 0.5 * d0 * (1 - 1e-9);
       const real fraction = exact_fill ? cell_fluid_fraction(x, sc.dx, sc.dy, solid_gap) : real(1);
       if (!keep || near_body(x)) {
         if (exact_fill && fraction > 0) band.push_back({ix, iy, fraction});

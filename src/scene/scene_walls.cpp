@@ -16,8 +16,7 @@ bool same_point(const Domain& d, Vec2 a, Vec2 b, real tol) { return norm(d.separ
 /// x moved to its periodic image nearest the wall's middle (an arc's centre), so that a wall
 /// spanning a periodic side is found from either end.
 Vec2 image_near(const WallPiece& w, const Domain& dom, Vec2 x) {
-  const Vec2 mid = w.is_arc() ? w.center() : w.point_at(0.5);
-  return mid + dom.separation(x, mid);
+  return w.middle() + dom.separation(x, w.middle());
 }
 
 /// Samples wall w at spacing ~d0: points at fractions k/n of its length for k = 0..n-1, plus
@@ -103,12 +102,12 @@ namespace particula {
 
 using scene_detail::image_near;
 
-/// The side of the nearest wall point. Where that point is an end point shared by two walls,
-/// x lies in the cone between the two end normals, and the sign of (x - p).(n1 + n2) is the
-/// side of the chain there (in 2D the pseudo-normal of a vertex decides inside and outside).
-
-bool in_fluid_region(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x) {
-  if (walls.empty()) return true;
+/// The distance to the nearest wall point, with the sign of its side. Where that point is an end
+/// point shared by two walls, x lies in the cone between the two end normals, and the sign of
+/// (x - p).(n1 + n2) is the side of the chain there (in 2D the pseudo-normal of a vertex decides
+/// inside and outside).
+real signed_wall_distance(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x) {
+  if (walls.empty()) return std::numeric_limits<real>::infinity();
   real best = std::numeric_limits<real>::infinity();
   for (const WallPiece& w : walls) best = std::min(best, w.nearest(image_near(w, dom, x)).distance);
   const real tie = best * (1 + 1e-9) + 1e-300;
@@ -117,11 +116,15 @@ bool in_fluid_region(const std::vector<WallPiece>& walls, const Domain& dom, Vec
     const Vec2 xi = image_near(w, dom, x);
     const WallNearest n = w.nearest(xi);
     if (n.distance > tie) continue;
-    if (w.is_full_circle() || (n.s > 0 && n.s < 1)) return n.side >= 0;
+    if (w.is_full_circle() || (n.s > 0 && n.s < 1)) return n.side >= 0 ? best : -best;
     normal_sum += n.normal;
     from_point = xi - n.point;
   }
-  return dot(from_point, normal_sum) >= 0;
+  return dot(from_point, normal_sum) >= 0 ? best : -best;
+}
+
+bool in_fluid_region(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x) {
+  return signed_wall_distance(walls, dom, x) >= 0;
 }
 
 std::vector<WallPiece> walls_at(const Case& c, real t) {
@@ -132,13 +135,3 @@ std::vector<WallPiece> walls_at(const Case& c, real t) {
 }
 
 }  // namespace particula
-
-namespace particula::scene_detail {
-
-real wall_distance(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x) {
-  real d = std::numeric_limits<real>::infinity();
-  for (const WallPiece& w : walls) d = std::min(d, w.nearest(image_near(w, dom, x)).distance);
-  return d;
-}
-
-}  // namespace particula::scene_detail

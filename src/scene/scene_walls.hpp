@@ -33,7 +33,4 @@ real corner_volume_factor(Vec2 n1, Vec2 n2);
 /// x moved to its periodic image nearest the wall's middle.
 Vec2 image_near(const WallPiece& w, const Domain& dom, Vec2 x);
 
-/// Distance from x to the nearest wall (through periodic sides), +inf without walls.
-real wall_distance(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x);
-
 }  // namespace particula::scene_detail

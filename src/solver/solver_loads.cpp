@@ -49,9 +49,11 @@ bool Solver::offer_near_solid(Vec2 x, real reach, std::size_t k, NearSolid& out)
   if (g.is_wall) {
     // Distance to the wall, from x's periodic image nearest the wall's middle (an arc's
     // centre), so that a wall spanning a periodic side is found from either end.
-    const WallPiece w = wall_now(k);
-    const Vec2 mid = w.is_arc() ? w.center() : w.point_at(0.5);
-    const Vec2 xi = mid + domain_.separation(x, mid);
+    WallPiece turned;
+    const WallPiece& w = g.angle == g.angle0 ? prm_.walls[k] : (turned = wall_now(k));
+    const Vec2 rel = domain_.separation(x, w.middle());
+    if (w.surely_farther(rel, reach)) return false;
+    const Vec2 xi = w.middle() + rel;
     const WallNearest near = w.nearest(xi);
     d = near.distance;
     if (!(d < reach)) return false;

@@ -4,6 +4,8 @@
 // (sampling, the fluid fill), the contacts and the loads (distance, smooth-pressure integral).
 #pragma once
 
+#include <cmath>
+
 #include "particula/core/types.hpp"
 
 namespace particula {
@@ -29,11 +31,13 @@ class WallPiece {
 
   bool is_arc() const { return radius_ > 0; }
   bool is_full_circle() const;
-  real length() const;
+  real length() const { return len_; }
   Vec2 start() const { return point_at(0); }
   Vec2 end() const { return point_at(1); }
   Vec2 center() const { return center_; }
   real radius() const { return radius_; }
+  /// The point periodic images are measured from: a segment's midpoint, an arc's centre.
+  Vec2 middle() const { return is_arc() ? center_ : point_at(0.5); }
   /// Signed sweep of an arc (rad).
   real sweep() const { return sweep_; }
   /// The point at fraction s of the length (0 = start, 1 = end).
@@ -42,6 +46,17 @@ class WallPiece {
   Vec2 normal_at(real s) const;
   /// Unit tangent (start to end) at fraction s.
   Vec2 tangent_at(real s) const;
+  /// A cheap test that x (given as x - middle()) is farther than `reach` from the wall: outside
+  /// the band of half-width `reach` along a segment's line or beyond its ends, or outside the
+  /// annulus round an arc's circle.
+  bool surely_farther(Vec2 from_middle, real reach) const {
+    if (!is_arc()) {
+      const Vec2 t = to_ - from_;
+      return std::fabs(cross(t, from_middle)) > reach * len_ || std::fabs(dot(t, from_middle)) > (0.5 * len_ + reach) * len_;
+    }
+    const real r2 = norm2(from_middle), lo = radius_ - reach;
+    return r2 > (radius_ + reach) * (radius_ + reach) || (lo > 0 && r2 < lo * lo);
+  }
   /// The nearest point of the wall to x.
   WallNearest nearest(Vec2 x) const;
   /// The wall moved rigidly: rotated by `angle` about `pivot`, then shifted by `shift`.
@@ -53,6 +68,7 @@ class WallPiece {
   Vec2 from_, to_;          // segment
   Vec2 center_;             // arc
   real radius_ = 0, start_ = 0, sweep_ = 0;
+  real len_ = 0;
 };
 
 }  // namespace particula

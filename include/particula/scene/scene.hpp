@@ -26,6 +26,9 @@ PhysicsParams physics_params(const Case& c);
 /// mean normal there); everywhere without walls. The fluid fill of build_scene and the
 /// containment checks of the robustness suite.
 bool in_fluid_region(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x);
+/// The distance from x to the nearest wall, positive in the region the walls enclose and
+/// negative outside it (+inf without walls).
+real signed_wall_distance(const std::vector<WallPiece>& walls, const Domain& dom, Vec2 x);
 /// A case's walls at time t (a turning wall turned by omega t about its pivot).
 std::vector<WallPiece> walls_at(const Case& c, real t);
 Scene build_scene(const Case& c);
