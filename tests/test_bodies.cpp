@@ -39,7 +39,11 @@ TEST(Shapes, ExactAreaAndMomentMatchQuadrature) {
   const std::vector<Shape> shapes = {
       Shape::circle(1.3), Shape::ellipse(2.0, 0.7), Shape::half_disc(1.1),
       Shape::polygon({{0, 0}, {3, 0}, {3, 1}, {1, 1}, {1, 2.5}, {0, 2.5}}),  // non-convex L shape
-      Shape::polygon({{0, 0}, {2, 0.3}, {1.2, 1.9}})};
+      Shape::polygon({{0, 0}, {2, 0.3}, {1.2, 1.9}}),
+      // holes in either orientation, off centre: the centroid and moments take them out
+      Shape::polygon({{0, 0}, {3, 0}, {3, 2}, {0, 2}}, {{{0.4, 0.4}, {1.4, 0.4}, {1.4, 1.2}, {0.4, 1.2}},
+                                                          {{2.6, 1.6}, {2.2, 1.6}, {2.4, 0.5}}}),
+      Shape::polygon({{0, 0}, {3, 0}, {3, 1}, {1, 1}, {1, 2.5}, {0, 2.5}}, {{{0.3, 0.3}, {0.7, 0.3}, {0.5, 2.0}}})};
   for (const auto& s : shapes) {
     real A, J;
     Vec2 c;
@@ -50,10 +54,30 @@ TEST(Shapes, ExactAreaAndMomentMatchQuadrature) {
   }
 }
 
+TEST(Shapes, SquareRingHasTheExactAreaAndMoment) {
+  // A square of side 3 with a centred square hole of side 1: A = 9 - 1, J = (3^4 - 1^4) / 6.
+  const Shape s = Shape::polygon({{0, 0}, {3, 0}, {3, 3}, {0, 3}}, {{{1, 1}, {1, 2}, {2, 2}, {2, 1}}});
+  EXPECT_NEAR(s.area(), 8.0, 1e-12);
+  EXPECT_NEAR(s.polar_moment(), 80.0 / 6, 1e-12);
+  EXPECT_NEAR(norm(s.centroid_offset() - Vec2{1.5, 1.5}), 0.0, 1e-12);
+  EXPECT_NEAR(s.perimeter(), 16.0, 1e-12);
+  EXPECT_FALSE(s.contains({0, 0})) << "the middle of the hole (body frame) is fluid";
+  EXPECT_NEAR(s.signed_distance({0, 0}), 0.5, 1e-12);
+  EXPECT_NEAR(s.signed_distance({0.75, 0}), -0.25, 1e-12);
+  EXPECT_NEAR(s.min_width(), 1.0, 1e-12) << "the solid between the hole and the outline";
+  Vec2 n;
+  real d = 0;
+  s.distance_and_gradient({0.2, 0}, d, n);
+  EXPECT_NEAR(d, 0.3, 1e-12);
+  EXPECT_NEAR(norm(n - Vec2{-1, 0}), 0.0, 1e-12) << "out of the solid into the hole";
+}
+
 TEST(Shapes, SurfaceSamplesCoverThePerimeterWithOutwardNormals) {
   const real d0 = 0.05;
   for (const auto& s : {Shape::circle(1.0), Shape::ellipse(2.0, 1.0), Shape::half_disc(1.0),
-                        Shape::polygon({{0, 0}, {3, 0}, {3, 1}, {1, 1}, {1, 2.5}, {0, 2.5}})}) {
+                        Shape::polygon({{0, 0}, {3, 0}, {3, 1}, {1, 1}, {1, 2.5}, {0, 2.5}}),
+                        Shape::polygon({{0, 0}, {3, 0}, {3, 2}, {0, 2}}, {{{0.4, 0.4}, {1.4, 0.4}, {1.4, 1.2}},
+                                                                          {{2.6, 1.6}, {2.2, 1.6}, {2.4, 0.5}}})}) {
     const auto samples = s.sample_surface(d0);
     real L = 0;
     for (const auto& smp : samples) {

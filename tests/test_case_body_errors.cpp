@@ -361,3 +361,52 @@ TEST(CaseBodyOverrides, Errors) {
 
 // ---------------------------------------------------------------------------------------------
 // Resolved case.
+
+// Polygons with holes.
+
+namespace {
+
+/// A fixed 12 mm square (120 d0) with the holes given, one per line.
+std::string square_with_holes(const std::vector<std::string>& holes) {
+  std::string text = "shape = \"polygon\"\nmotion = \"fixed\"\n"
+                     "vertices = [[0.004, 0.02], [0.016, 0.02], [0.016, 0.032], [0.004, 0.032]]\nholes = [\n";
+  for (const std::string& h : holes) text += "  " + h + ",\n";
+  return one_body(text + "]\n");
+}
+
+}  // namespace
+
+TEST(CaseBodyErrors, PolygonHolesInsideApartAndWideEnough) {
+  const std::string middle = "[[0.007, 0.023], [0.013, 0.023], [0.013, 0.029], [0.007, 0.029]]";
+  const Case ok = load(square_with_holes({"[[0.0055, 0.0215], [0.0085, 0.0215], [0.0085, 0.0245], [0.0055, 0.0245]]",
+                                          "[[0.0145, 0.0305], [0.0145, 0.026], [0.010, 0.0305]]"}));
+  ASSERT_EQ(ok.bodies[0].holes.size(), 2u);
+  EXPECT_EQ(ok.bodies[0].holes[1].size(), 3u);
+
+  const std::string outside = "[[0.017, 0.021], [0.019, 0.021], [0.019, 0.023]]";
+  expect_error(square_with_holes({middle, outside}), "body[0].holes", outside,
+               "polygon hole holes[1] does not lie inside the polygon's vertices");
+  const std::string crossing = "[[0.010, 0.023], [0.018, 0.023], [0.018, 0.029], [0.010, 0.029]]";
+  expect_error(square_with_holes({crossing}), "body[0].holes", crossing,
+               "polygon hole holes[0] does not lie inside the polygon's vertices");
+  const std::string overlapping = "[[0.008, 0.024], [0.014, 0.024], [0.014, 0.030]]";
+  expect_error(square_with_holes({middle, overlapping}), "body[0].holes", overlapping,
+               "polygon holes holes[0] and holes[1] overlap");
+  const std::string near_edge = "[[0.0045, 0.023], [0.013, 0.023], [0.013, 0.029], [0.0045, 0.029]]";
+  expect_error(square_with_holes({near_edge}), "body[0].holes", near_edge,
+               "body 'body0' (polygon) is too thin for d0 = 0.0001 m: the solid between polygon hole holes[0] "
+               "and the outline (vertices) is 0.0005 m, only 5 particles across; it needs at least 10");
+  const std::string tiny = "[[0.009, 0.025], [0.0095, 0.025], [0.0095, 0.0255], [0.009, 0.0255]]";
+  expect_error(square_with_holes({tiny}), "body[0].holes", tiny,
+               "polygon hole holes[0] of body 'body0' (polygon) is too small for d0 = 0.0001 m: it is 0.0005 m "
+               "across, only 5 particles; the fluid in it needs at least 10");
+  const std::string bow_tie = "[[0.007, 0.023], [0.013, 0.029], [0.013, 0.023], [0.007, 0.029]]";
+  expect_error(square_with_holes({bow_tie}), "body[0].holes", bow_tie,
+               "polygon hole holes[0] intersects itself: edge holes[0][0] -> holes[0][1]");
+  const std::string two_points = "[[0.007, 0.023], [0.013, 0.023]]";
+  expect_error(square_with_holes({middle, two_points}), "body[0].holes", two_points,
+               "loop [1]: too few points");
+  expect_error(one_body("shape = \"circle\"\ncenter = [0.01, 0.03]\nradius = 0.003\ndensity = 2000\n"
+                        "holes = [[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]]\n"),
+               "body[0].holes", "holes", "not used by shape 'circle' (only by shape polygon)");
+}

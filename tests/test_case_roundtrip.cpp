@@ -205,6 +205,11 @@ void expect_same(const Case& a, const Case& b) {
     EXPECT_SAME(bodies[i].semi_axes);
     ASSERT_EQ(a.bodies[i].vertices.size(), b.bodies[i].vertices.size());
     for (std::size_t k = 0; k < a.bodies[i].vertices.size(); ++k) EXPECT_SAME(bodies[i].vertices[k]);
+    ASSERT_EQ(a.bodies[i].holes.size(), b.bodies[i].holes.size());
+    for (std::size_t h = 0; h < a.bodies[i].holes.size(); ++h) {
+      ASSERT_EQ(a.bodies[i].holes[h].size(), b.bodies[i].holes[h].size());
+      for (std::size_t k = 0; k < a.bodies[i].holes[h].size(); ++k) EXPECT_SAME(bodies[i].holes[h][k]);
+    }
     EXPECT_SAME(bodies[i].angle);
     EXPECT_SAME(bodies[i].density);
     EXPECT_EQUAL(bodies[i].motion);
@@ -282,7 +287,8 @@ semi_axes = [0.15, 0.1]
 motion = "fixed"
 [[body]]
 shape = "polygon"
-vertices = [[0.1, 0.5], [0.4, 0.5], [0.25, 0.8]]
+vertices = [[0.05, 0.4], [0.45, 0.4], [0.45, 0.8], [0.05, 0.8]]
+holes = [[[0.2, 0.55], [0.3, 0.55], [0.3, 0.65], [0.2, 0.65]]]
 motion = "prescribed"
 schedule = [[0, 0, 0, 0], [1, 0, 0, 1]]
 [[body]]

@@ -40,6 +40,8 @@ std::size_t value_index(ValueType t) {
       return 4;
     case ValueType::Bool2:
       return 5;
+    case ValueType::Vec2Loops:
+      return 8;
     case ValueType::Vec2List:
       return 6;
     case ValueType::Real4Table:
@@ -126,6 +128,14 @@ TEST(CaseSchema, DefaultsAgreeWithCaseHpp) {
     if (s.key == "body[].motion") {
       EXPECT_EQ(format_toml_value(s.default_value), "\"free\"");
       EXPECT_EQ(BodySpec{}.motion, BodyMotion::Free);
+      continue;
+    }
+    if (s.key == "body[].holes") {  // a polygon without holes; no holes are not written back
+      Case polygon = fresh;
+      polygon.bodies[0].shape = BodyShape::Polygon;
+      ASSERT_TRUE(s.used_for(polygon, 0));
+      EXPECT_FALSE(s.bind.get(polygon, 0));
+      EXPECT_TRUE(std::get<std::vector<std::vector<Vec2>>>(s.default_value).empty());
       continue;
     }
     ASSERT_TRUE(s.used_for(fresh, 0));

@@ -1,6 +1,7 @@
 // Containers of any shape (issue 19): walls as segments and circular arcs, the fluid filling only
 // the region the walls enclose, walls turning about a pivot, and the spin-up of fluid in a
 // circular container against its exact solution (velocity and the torque on the container).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -274,4 +275,85 @@ omega = 1.0
               100 * (rotor.torque / exact - 1), wall_about_centre, 100 * (rotor.torque + wall_about_centre) / rotor.torque);
   EXPECT_NEAR(rotor.torque / exact, 1.0, 1e-3);
   EXPECT_NEAR((rotor.torque + wall_about_centre) / rotor.torque, 0.0, 1e-3);
+}
+
+namespace {
+
+/// The Couette cell with its outer cylinder as a body: a fixed polygon whose hole is a regular
+/// polygon of radius R2 = 1 cm with vertices about d0 apart, 10 d0 of solid round it, and a thin
+/// layer of fluid outside it in a periodic box.
+std::string couette_ring_body_case(real d0) {
+  const real R2 = 0.01, solid = 10 * d0, margin = 4 * d0, half = R2 + solid + 0.5 * margin;
+  const real box = 2 * half, cx = half;
+  const int n = static_cast<int>(std::lround(2 * M_PI * R2 / d0));
+  std::string hole;
+  for (int k = 0; k < n; ++k) {
+    const real a = 2 * M_PI * k / n;
+    hole += fmt::format("{}[{:.17g}, {:.17g}]", k ? ", " : "", cx + R2 * std::cos(a), cx + R2 * std::sin(a));
+  }
+  const real lo = cx - R2 - solid, hi = cx + R2 + solid;
+  return fmt::format(R"(name = "couette_ring_body"
+[domain]
+min = [0.0, 0.0]
+max = [{box}, {box}]
+periodic = [true, true]
+[resolution]
+d0 = {d0}
+[fluid]
+nu = 1.0e-4
+c = 0.1
+[numerics]
+shifting_beta = 0.0
+[time]
+end = 0.3
+[output]
+interval = 0.3
+[[body]]
+name = "ring"
+shape = "polygon"
+motion = "fixed"
+vertices = [[{lo}, {lo}], [{hi}, {lo}], [{hi}, {hi}], [{lo}, {hi}]]
+holes = [[{hole}]]
+[[body]]
+name = "rotor"
+shape = "circle"
+center = [{cx}, {cx}]
+radius = 0.005
+motion = "prescribed"
+omega = 1.0
+)",
+                     fmt::arg("box", box), fmt::arg("d0", d0), fmt::arg("lo", lo), fmt::arg("hi", hi),
+                     fmt::arg("hole", hole), fmt::arg("cx", cx));
+}
+
+}  // namespace
+
+// A container built as a body with a hole (issue 19): the Couette cell above with the outer
+// cylinder as a fixed polygon ring. The fluid fills the hole (and the layer outside the ring),
+// the rotor's torque matches the exact steady torque and the ring's torque balances it, as with
+// the arc wall, at 10 particles across the gap.
+TEST(Containers, CouetteCellInAPolygonRingBodyMatchesTheExactTorque) {
+  const real d0 = 5e-4;
+  const Case c = load_case_text(couette_ring_body_case(d0), "couette_ring_body.toml");
+  Scene sc = build_scene(c);
+  const Vec2 centre = c.bodies[1].center;
+  real mass_in_hole = 0;
+  const Particles& P0 = sc.particles;
+  for (std::size_t i = P0.n_boundary; i < P0.size(); ++i)
+    if (norm(P0.x[i] - centre) < 0.01) mass_in_hole += P0.m[i];
+  const real hole_mass = c.rho0 * M_PI * (0.01 * 0.01 - 0.005 * 0.005);
+  EXPECT_NEAR(mass_in_hole / hole_mass, 1.0, 2e-3) << "the fluid fills the ring's hole";
+  Solver s(sc.params, sc.domain, sc.particles, sc.groups);
+  while (s.time() < 0.3) ASSERT_FALSE(s.step(0.3 - s.time()).has_value());
+  const RigidGroup &ring = s.groups()[0], &rotor = s.groups()[1];
+  const real R1 = 0.005, R2 = 0.01;
+  const real exact = -4 * M_PI * c.mu() * 1.0 * R1 * R1 * R2 * R2 / (R2 * R2 - R1 * R1);
+  std::printf("rotor torque %.7g N m/m (exact %.7g: %+.4f %%), ring %.7g: imbalance %+.4f %%\n", rotor.torque, exact,
+              100 * (rotor.torque / exact - 1), ring.torque, 100 * (rotor.torque + ring.torque) / rotor.torque);
+  EXPECT_NEAR(rotor.torque / exact, 1.0, 1e-3);
+  EXPECT_NEAR((rotor.torque + ring.torque) / rotor.torque, 0.0, 1e-3);
+  for (std::size_t i = s.particles().n_boundary; i < s.particles().size(); ++i) {
+    const real r = norm(s.domain().separation(s.particles().x[i], centre));
+    ASSERT_FALSE(r > R2 - 0.25 * d0 && r < R2 + 10 * d0) << "a fluid particle inside the ring's solid at r = " << r;
+  }
 }

@@ -59,8 +59,10 @@ std::string unknown_key_message(const std::string& concrete);
 /// item of a list value, `element_line` (if given) receives the item's line.
 std::string convert_node(const toml::node& node, const KeySpec& spec, Value& out,
                          int* element_line = nullptr);
-/// True for value types that are lists of items (Vec2List, Real4Table).
-inline bool is_list_type(ValueType t) { return t == ValueType::Vec2List || t == ValueType::Real4Table; }
+/// True for value types that are lists of items (Vec2List, Real4Table, Vec2Loops).
+inline bool is_list_type(ValueType t) {
+  return t == ValueType::Vec2List || t == ValueType::Real4Table || t == ValueType::Vec2Loops;
+}
 
 /// Applies --set overrides to the parsed document (see load_case).
 void apply_overrides(toml::table& root, const std::vector<std::string>& overrides, LoadContext& ctx);
@@ -86,6 +88,17 @@ void check_arc_overlap(const Case& c, const LoadContext& ctx);
 void check_turning_walls(const Case& c, const LoadContext& ctx);
 void check_region_closed(const Case& c, const LoadContext& ctx);
 void check_spin_up(const Case& c, const LoadContext& ctx);
+
+/// Checks of bodies (body_checks.cpp), run by run_cross_checks in this order: valid polygons
+/// and holes, density of free bodies, schedules, fixed bodies without velocity, size against d0,
+/// inside the domain, no overlap at t = 0.
+void check_polygons(const Case& c, const LoadContext& ctx);
+void check_density(const Case& c, const LoadContext& ctx);
+void check_schedules(const Case& c, const LoadContext& ctx);
+void check_fixed_bodies(const Case& c, const LoadContext& ctx);
+void check_body_sizes(const Case& c, const LoadContext& ctx);
+void check_bodies_in_domain(const Case& c, const LoadContext& ctx);
+void check_body_overlap(const Case& c, const LoadContext& ctx);
 
 /// Consistency checks between keys (domain, walls, periodic width, bodies, ...); throw CaseError.
 void run_cross_checks(const Case& c, const LoadContext& ctx);

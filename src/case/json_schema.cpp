@@ -43,6 +43,11 @@ std::string json_value(const Value& value) {
       for (std::size_t i = 0; i < points.size(); ++i) out += fmt::format("{}{}", i ? ", " : "", json_point(points[i]));
       return out + "]";
     }
+    std::string operator()(const std::vector<std::vector<Vec2>>& loops) const {
+      std::string out = "[";
+      for (std::size_t i = 0; i < loops.size(); ++i) out += (i ? ", " : "") + (*this)(loops[i]);
+      return out + "]";
+    }
     std::string operator()(const std::vector<Real4>& rows) const {
       std::string out = "[";
       for (std::size_t i = 0; i < rows.size(); ++i)
@@ -92,6 +97,12 @@ JsonObject type_schema(const KeySpec& s) {
       j.set("type", "array").set("items", fixed_array(number_schema("number", s.range), 4));
       j.set("minItems", s.min_items);
       return j;
+    case ValueType::Vec2Loops: {
+      JsonObject loop;
+      loop.set("type", "array").set("items", fixed_array(number_schema("number", s.range), 2)).set("minItems", 3);
+      j.set("type", "array").set("items", loop);
+      return j;
+    }
   }
   return j;
 }

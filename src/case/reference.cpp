@@ -241,6 +241,7 @@ std::string range_cell(const KeySpec& s) {
            (s.unique ? ", unique" : "");
   if (s.type == ValueType::Vec2List) return fmt::format("at least {} points", s.min_items);
   if (s.type == ValueType::Real4Table) return fmt::format("at least {} rows", s.min_items);
+  if (s.type == ValueType::Vec2Loops) return "at least 3 points each";
   if (s.type == ValueType::Vec2 && !s.range.text().empty()) return code(s.range.text()) + " each";
   return code(s.range.text());
 }

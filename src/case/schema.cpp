@@ -127,6 +127,18 @@ Binding motion_schedule() {
           }};
 }
 
+/// body[].holes; a polygon without holes does not write the key back.
+Binding polygon_holes() {
+  return {[](Case& c, std::size_t i, const Value& v) {
+            c.bodies.at(i).holes = std::get<std::vector<std::vector<Vec2>>>(v);
+          },
+          [](const Case& c, std::size_t i) -> std::optional<Value> {
+            const auto& holes = c.bodies.at(i).holes;
+            if (holes.empty()) return std::nullopt;
+            return holes;
+          }};
+}
+
 /// A pair of bool members written as one [x, y] key.
 Binding pair_field(bool Case::*x, bool Case::*y) {
   return {[x, y](Case& c, std::size_t, const Value& v) {
@@ -512,6 +524,14 @@ std::vector<KeySpec> make_schema() {
                               "orientation, not self-intersecting and at least d0/2 apart (each is a surface "
                               "particle); a non-zero angle rotates them about their area centroid.",
                               member(B, &BodySpec::vertices)),
+                shape, {"polygon"}),
+      used_when(row("body[].holes", ValueType::Vec2Loops, "m", def(std::vector<std::vector<Vec2>>{}, "none"), any(),
+                    "Holes of a polygon, each a list of vertices [[x, y], ...] like `vertices` (world coordinates "
+                    "at t = 0, either orientation): a hole lies inside the polygon, clear of its outline and of "
+                    "the other holes by at least 10 d0 of solid, and the fluid fills it (a container as a body: "
+                    "a pipe, a ring, a perforated plate). The solid between two of its boundaries counts as the "
+                    "body's smallest width.",
+                    polygon_holes()),
                 shape, {"polygon"}),
       real_key("body[].angle", "rad", def(0.0), any(),
                "Orientation at t = 0, counter-clockwise from the body frame (a half_disc's round side faces "

@@ -51,6 +51,8 @@ std::string type_name(ValueType type) {
       return "vec2 list";
     case ValueType::Real4Table:
       return "real4 table";
+    case ValueType::Vec2Loops:
+      return "vec2 loops";
   }
   return "?";
 }
@@ -118,6 +120,16 @@ std::string format_toml_value(const Value& value) {
       std::vector<std::string> items;
       for (const Vec2& p : points) items.push_back((*this)(p));
       return list(items);
+    }
+    std::string operator()(const std::vector<std::vector<Vec2>>& loops) const {
+      std::vector<std::string> items;
+      for (const auto& loop : loops) {
+        std::vector<std::string> points;
+        for (const Vec2& p : loop) points.push_back((*this)(p));
+        items.push_back(fmt::format("[{}]", fmt::join(points, ", ")));
+      }
+      if (items.empty()) return "[]";
+      return fmt::format("[\n  {},\n]", fmt::join(items, ",\n  "));  // one loop per line
     }
     std::string operator()(const std::vector<Real4>& rows) const {
       std::vector<std::string> items;
@@ -262,6 +274,8 @@ std::string expected(const KeySpec& spec) {
     case ValueType::Real4Table:
       return fmt::format("an array of at least {} rows [{}] of real numbers", spec.min_items,
                          fmt::join(spec.columns, ", "));
+    case ValueType::Vec2Loops:
+      return "an array of loops, each an array of at least 3 points [x, y]";
   }
   return "?";
 }
@@ -394,6 +408,28 @@ std::string convert_real4_table(const toml::node& n, const KeySpec& spec, Value&
   return "";
 }
 
+/// An array of loops, each a Vec2List of at least 3 points (a problem names the loop and point).
+std::string convert_vec2_loops(const toml::node& n, const KeySpec& spec, Value& out, int& line) {
+  const auto* a = n.as_array();
+  if (!a || (!a->empty() && !a->get(0)->is_array())) return wrong_type(n, spec);
+  KeySpec loop_spec = spec;
+  loop_spec.type = ValueType::Vec2List;
+  loop_spec.min_items = 3;
+  std::vector<std::vector<Vec2>> loops;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node& e = *a->get(i);
+    Value points;
+    const std::string problem = convert_vec2_list(e, loop_spec, points, line);
+    if (!problem.empty()) {
+      if (line == 0) line = line_of(e);
+      return fmt::format("loop [{}]: {}", i, problem);
+    }
+    loops.push_back(std::get<std::vector<Vec2>>(points));
+  }
+  out = std::move(loops);
+  return "";
+}
+
 std::string convert_bool2(const toml::node& n, const KeySpec& spec, Value& out) {
   const auto* a = n.as_array();
   if (!a || a->size() != 2 || !a->get(0)->is_boolean() || !a->get(1)->is_boolean())
@@ -438,6 +474,7 @@ std::string convert_scalar(const toml::node& node, const KeySpec& spec, Value& o
       return convert_bool2(node, spec, out);
     case ValueType::Vec2List:
     case ValueType::Real4Table:
+    case ValueType::Vec2Loops:
       break;
   }
   return "unsupported type";
@@ -452,6 +489,8 @@ std::string convert_node(const toml::node& node, const KeySpec& spec, Value& out
     problem = convert_vec2_list(node, spec, out, line);
   else if (spec.type == ValueType::Real4Table)
     problem = convert_real4_table(node, spec, out, line);
+  else if (spec.type == ValueType::Vec2Loops)
+    problem = convert_vec2_loops(node, spec, out, line);
   else
     return convert_scalar(node, spec, out);
   if (element_line) *element_line = line;

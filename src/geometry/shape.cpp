@@ -86,47 +86,84 @@ Shape Shape::ellipse(real a, real b) {
   return s;
 }
 
-Shape Shape::polygon(std::vector<Vec2> v) {
+namespace {
+
+/// Twice the signed area of a closed loop (positive when counter-clockwise).
+real twice_signed_area(const std::vector<Vec2>& v) {
+  real a = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) a += cross(v[i], v[(i + 1) % v.size()]);
+  return a;
+}
+
+/// Smallest distance between a vertex of one loop and an edge of another: the thinnest solid
+/// between a hole and the outline or between two holes.
+real closest_loops(const std::vector<std::vector<Vec2>>& loops) {
+  real d2 = 1e300;
+  for (std::size_t a = 0; a < loops.size(); ++a)
+    for (std::size_t b = 0; b < loops.size(); ++b) {
+      if (a == b) continue;
+      const auto& e = loops[b];
+      for (const Vec2& p : loops[a])
+        for (std::size_t i = 0; i < e.size(); ++i) d2 = std::min(d2, norm2(p - closest_on_segment(p, e[i], e[(i + 1) % e.size()])));
+    }
+  return std::sqrt(d2);
+}
+
+}  // namespace
+
+Shape Shape::polygon(std::vector<Vec2> v, std::vector<std::vector<Vec2>> holes) {
   if (v.size() < 3) throw std::invalid_argument("a polygon needs at least 3 vertices");
+  // The solid lies on the left of every loop: the outline counter-clockwise, holes clockwise.
+  std::vector<std::vector<Vec2>> loops{std::move(v)};
+  for (auto& hole : holes) {
+    if (hole.size() < 3) throw std::invalid_argument("a polygon hole needs at least 3 vertices");
+    loops.push_back(std::move(hole));
+  }
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    const real a = twice_signed_area(loops[l]);
+    if (!(std::fabs(a) > 0)) throw std::invalid_argument("polygon has zero area");
+    if ((l == 0) != (a > 0)) std::reverse(loops[l].begin(), loops[l].end());
+  }
+  // Area and centroid: shoelace sums over all loops (a clockwise hole subtracts its share).
   real A2 = 0;
   Vec2 c;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Vec2 p = v[i], q = v[(i + 1) % v.size()];
-    const real w = cross(p, q);
-    A2 += w;
-    c += (w / 3) * (p + q);
-  }
-  if (!(std::fabs(A2) > 0)) throw std::invalid_argument("polygon has zero area");
-  if (A2 < 0) {  // make it counter-clockwise
-    std::reverse(v.begin(), v.end());
-    A2 = -A2;
-    c = -1.0 * c;
-  }
+  for (const auto& loop : loops)
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Vec2 p = loop[i], q = loop[(i + 1) % loop.size()];
+      const real w = cross(p, q);
+      A2 += w;
+      c += (w / 3) * (p + q);
+    }
+  if (!(A2 > 0)) throw std::invalid_argument("polygon holes cover its whole area");
   c = c / A2;
   Shape s;
   s.kind_ = ShapeKind::Polygon;
   s.centroid_offset_ = c;
-  for (auto& p : v) p = p - c;
-  // Polar moment about the (new) origin = the centroid: shoelace formula.
+  // Polar moment about the (new) origin = the centroid: shoelace formula over all loops.
   real J = 0;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Vec2 p = v[i], q = v[(i + 1) % v.size()];
-    J += cross(p, q) * (p.x * p.x + p.x * q.x + q.x * q.x + p.y * p.y + p.y * q.y + q.y * q.y);
+  for (auto& loop : loops) {
+    for (auto& p : loop) p = p - c;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Vec2 p = loop[i], q = loop[(i + 1) % loop.size()];
+      J += cross(p, q) * (p.x * p.x + p.x * q.x + q.x * q.x + p.y * p.y + p.y * q.y + q.y * q.y);
+    }
   }
-  s.verts_ = v;
   s.area_ = 0.5 * A2;
   s.polar_ = J / 12;
-  for (const auto& p : v) s.bound_ = std::max(s.bound_, norm(p));
+  const std::vector<Vec2>& outline = loops[0];
+  for (const auto& p : outline) s.bound_ = std::max(s.bound_, norm(p));
   // Smallest width: minimum over edges of the largest distance of any vertex from the edge line
-  // (exact for convex polygons, an upper bound for non-convex ones).
+  // (exact for convex polygons, an upper bound for non-convex ones), and the thinnest solid
+  // between loops.
   real w = 1e300;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Vec2 t = unit(v[(i + 1) % v.size()] - v[i]);
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const Vec2 t = unit(outline[(i + 1) % outline.size()] - outline[i]);
     real far = 0;
-    for (const auto& p : v) far = std::max(far, std::fabs(cross(t, p - v[i])));
+    for (const auto& p : outline) far = std::max(far, std::fabs(cross(t, p - outline[i])));
     w = std::min(w, far);
   }
-  s.min_width_ = w;
+  s.min_width_ = std::min(w, closest_loops(loops));
+  s.loops_ = std::move(loops);
   return s;
 }
 
@@ -159,7 +196,8 @@ real Shape::perimeter() const {
     }
     case ShapeKind::Polygon: {
       real L = 0;
-      for (std::size_t i = 0; i < verts_.size(); ++i) L += norm(verts_[(i + 1) % verts_.size()] - verts_[i]);
+      for (const auto& loop : loops_)
+        for (std::size_t i = 0; i < loop.size(); ++i) L += norm(loop[(i + 1) % loop.size()] - loop[i]);
       return L;
     }
   }
@@ -184,15 +222,16 @@ Vec2 Shape::closest_point(Vec2 p) const {
       return ellipse_point(a_, b_, t);
     }
     case ShapeKind::Polygon: {
-      Vec2 best = verts_[0];
+      Vec2 best = loops_[0][0];
       real bd = 1e300;
-      for (std::size_t i = 0; i < verts_.size(); ++i) {
-        const Vec2 q = closest_on_segment(p, verts_[i], verts_[(i + 1) % verts_.size()]);
-        if (norm2(q - p) < bd) {
-          bd = norm2(q - p);
-          best = q;
+      for (const auto& loop : loops_)
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+          const Vec2 q = closest_on_segment(p, loop[i], loop[(i + 1) % loop.size()]);
+          if (norm2(q - p) < bd) {
+            bd = norm2(q - p);
+            best = q;
+          }
         }
-      }
       return best;
     }
     case ShapeKind::HalfDisc: {
@@ -210,7 +249,11 @@ bool Shape::contains(Vec2 p) const {
   switch (kind_) {
     case ShapeKind::Circle: return norm(p) < a_;
     case ShapeKind::Ellipse: return (p.x * p.x) / (a_ * a_) + (p.y * p.y) / (b_ * b_) < 1;
-    case ShapeKind::Polygon: return inside_polygon(p, verts_);
+    case ShapeKind::Polygon: {  // even-odd rule over all loops: a point in a hole is outside
+      bool in = false;
+      for (const auto& loop : loops_) in = in != inside_polygon(p, loop);
+      return in;
+    }
     case ShapeKind::HalfDisc: {
       const Vec2 r = p - Vec2{-centroid_offset_.x, 0};
       return r.x > 0 && norm(r) < a_;
@@ -285,7 +328,12 @@ std::vector<SurfaceSample> Shape::sample_surface(real d0) const {
       }
       break;
     }
-    case ShapeKind::Polygon: out = sample_loop(verts_, d0); break;
+    case ShapeKind::Polygon:  // the outline, then each hole (its normals point into the hole)
+      for (const auto& loop : loops_) {
+        const auto part = sample_loop(loop, d0);
+        out.insert(out.end(), part.begin(), part.end());
+      }
+      break;
     case ShapeKind::HalfDisc: {
       const Vec2 d{-centroid_offset_.x, 0};
       const int na = std::max(4, static_cast<int>(std::lround(M_PI * a_ / d0)));

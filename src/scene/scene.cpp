@@ -63,7 +63,7 @@ Shape body_shape(const BodySpec& b) {
   switch (b.shape) {
     case BodyShape::Circle: return Shape::circle(b.radius);
     case BodyShape::Ellipse: return Shape::ellipse(b.semi_axes.x, b.semi_axes.y);
-    case BodyShape::Polygon: return Shape::polygon(b.vertices);
+    case BodyShape::Polygon: return Shape::polygon(b.vertices, b.holes);
     case BodyShape::HalfDisc: return Shape::half_disc(b.radius);
   }
   return Shape::circle(b.radius);

@@ -101,6 +101,7 @@ struct BodySpec {
   real radius = 0;             // circle, half_disc
   Vec2 semi_axes;              // ellipse: (a along the body x axis, b along the body y axis)
   std::vector<Vec2> vertices;  // polygon: vertices in world coordinates at t = 0 (angle applies about the centroid)
+  std::vector<std::vector<Vec2>> holes;  // polygon: holes (fluid inside), world coordinates at t = 0
   real angle = 0;
   real density = 0;            // kg/m^3 (free bodies)
   BodyMotion motion = BodyMotion::Free;

@@ -36,6 +36,7 @@ enum class ValueType {
   Bool2,       // array of two bools [x, y]
   Vec2List,    // array of points [[x0, y0], [x1, y1], ...] (at least KeySpec::min_items)
   Real4Table,  // array of rows of four reals [[a, b, c, d], ...] (columns: KeySpec::columns)
+  Vec2Loops,   // array of closed point lists [[[x0, y0], [x1, y1], [x2, y2], ...], ...] (each >= 3 points)
 };
 
 using Bool2 = std::array<bool, 2>;
@@ -43,9 +44,10 @@ using Bool2 = std::array<bool, 2>;
 using Real4 = std::array<real, 4>;
 
 /// A checked value of a key. Real -> real, Int -> int64, Bool -> bool, String and Choice ->
-/// string, Vec2 -> Vec2, Bool2 -> Bool2, Vec2List -> vector<Vec2>, Real4Table -> vector<Real4>.
-using Value =
-    std::variant<real, std::int64_t, bool, std::string, Vec2, Bool2, std::vector<Vec2>, std::vector<Real4>>;
+/// string, Vec2 -> Vec2, Bool2 -> Bool2, Vec2List -> vector<Vec2>, Real4Table -> vector<Real4>,
+/// Vec2Loops -> vector<vector<Vec2>>.
+using Value = std::variant<real, std::int64_t, bool, std::string, Vec2, Bool2, std::vector<Vec2>, std::vector<Real4>,
+                           std::vector<std::vector<Vec2>>>;
 
 /// An allowed interval for Real and Int keys, and for each component of a Vec2 key (both bounds
 /// optional, each inclusive or not). Non-finite numbers are never contained.

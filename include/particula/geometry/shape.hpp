@@ -26,10 +26,11 @@ class Shape {
   static Shape circle(real radius);
   /// Semi-axes a (along body x) and b (along body y).
   static Shape ellipse(real a, real b);
-  /// Polygon from vertices (any orientation, convex or not, not self-intersecting). The
-  /// vertices are shifted so that the area centroid is the origin; `centroid_offset()` returns
-  /// where the centroid was in the given coordinates.
-  static Shape polygon(std::vector<Vec2> vertices);
+  /// Polygon from vertices (any orientation, convex or not, not self-intersecting), with
+  /// optional holes (each a polygon strictly inside it, clear of the others; any orientation).
+  /// The vertices are shifted so that the area centroid is the origin; `centroid_offset()`
+  /// returns where the centroid was in the given coordinates.
+  static Shape polygon(std::vector<Vec2> vertices, std::vector<std::vector<Vec2>> holes = {});
   /// Half of a disc of radius R: the half with x >= 0 (flat side along the body y axis through
   /// the disc centre). The body frame origin is the centroid (4R/3pi from the flat side).
   static Shape half_disc(real radius);
@@ -62,7 +63,9 @@ class Shape {
  private:
   ShapeKind kind_ = ShapeKind::Circle;
   real a_ = 0, b_ = 0;  // radius / semi-axes
-  std::vector<Vec2> verts_;
+  // Polygon: the outline counter-clockwise, then each hole clockwise, so that the solid is on
+  // the left of every loop (shoelace sums over all loops give the solid's area and moments).
+  std::vector<std::vector<Vec2>> loops_;
   real area_ = 0, polar_ = 0, bound_ = 0, min_width_ = 0;
   Vec2 centroid_offset_;
   Vec2 closest_point(Vec2 p) const;
