@@ -188,21 +188,23 @@ TEST(CaseBodyErrors, BodyOutsideTheDomain) {
   expect_error(with(kCase, "vertices = [[0.014, 0.02]", "vertices = [[0.014, -0.001]"), "body[2].vertices",
                "vertices = [[0.014",
                "body 'paddle' (polygon) lies outside the domain: it reaches y = -0.001 m");
-  // A half-disc on the wall is fine, beyond the wall it is not.
-  expect_error(with(kCase, "center = [0, 0.04]", "center = [-0.001, 0.04]"), "body[3].center",
-               "center = [-0.001",
-               "body 'obstacle' (half_disc) lies outside the domain: it reaches x = -0.001 m");
-  // Turned by 90 degrees on the left wall, its round side reaches beyond it.
-  expect_error(with(kCase, "radius = 0.005\n", "radius = 0.005\nangle = 1.5707963267948966\n"),
-               "body[3].center", "center = [0, 0.04]", "lies outside the domain");
+  // A fixed body may reach past an edge through a wall along it (the scene cuts it off there:
+  // CaseWallErrors.OnlyAFixedBodyStandsOnAWall), a free one may not; wholly beyond the edge it
+  // is refused.
+  expect_error(with(kCase, "center = [0, 0.04]", "center = [-0.001, 0.04]"), "body[3].center", "center = [-0.001",
+               "body 'obstacle' (half_disc) reaches past the domain edge x = 0 m, where no wall lies");
+  expect_error(with(kCase, "center = [0.01, 0.01]", "center = [0.0195, 0.01]"), "body[0].center",
+               "center = [0.0195", "(only a fixed body may reach past a domain edge)");
+  expect_error(with(kCase, "center = [0, 0.04]", "center = [-0.006, 0.04]"), "body[3].center", "center = [-0.006",
+               "body 'obstacle' (half_disc) lies wholly outside the domain: it spans x = -0.006 .. -0.001 m");
 }
 
 TEST(CaseBodyErrors, OnlyAHalfDiscMayTouchTheDomainEdge) {
   expect_error(
       with(kCase, "center = [0.01, 0.01]", "center = [0.01, 0.00125]"), "body[0].center",
       "center = [0.01, 0.00125]",
-      "body 'disc' (circle) touches the domain edge y = 0 m: leave fluid between them (only a half_disc may "
-      "sit on a domain edge)");
+      "body 'disc' (circle) touches the domain edge y = 0 m: leave fluid between them (only a fixed body or "
+      "a half_disc may sit on a domain edge)");
   EXPECT_NO_THROW(load(with(kCase, "center = [0.01, 0.01]", "center = [0.01, 0.0013]")));
 }
 

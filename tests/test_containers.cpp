@@ -357,3 +357,78 @@ TEST(Containers, CouetteCellInAPolygonRingBodyMatchesTheExactTorque) {
     ASSERT_FALSE(r > R2 - 0.25 * d0 && r < R2 + 10 * d0) << "a fluid particle inside the ring's solid at r = " << r;
   }
 }
+
+// Fixed bodies crossing walls and the domain's edge (issue 19): a cylinder sunk into the floor
+// (crossing at 70.5 degrees) and a block reaching through the right wall past the domain's edge,
+// in a closed box of water at rest. Their parts beyond the walls are left out and each crossing is
+// a junction corner; the fluid must stay at rest outside them and inside the walls, and the
+// solids together must carry the fluid's weight.
+TEST(Containers, FixedBodiesCrossingWallsHoldFluidAtRest) {
+  const std::string text = R"(name = "sunk_bodies"
+[domain]
+min = [0.0, 0.0]
+max = [0.008, 0.008]
+[resolution]
+d0 = 2e-4
+[fluid]
+nu = 1.0e-6
+c = 2.0
+gravity = [0, -9.81]
+gravity_in_fluid = true
+[initial]
+hydrostatic = true
+[time]
+end = 0.05
+[output]
+interval = 0.05
+[[wall]]
+from = [0.0, 0.0]
+to = [0.008, 0.0]
+[[wall]]
+from = [0.008, 0.0]
+to = [0.008, 0.008]
+[[wall]]
+from = [0.008, 0.008]
+to = [0.0, 0.008]
+[[wall]]
+from = [0.0, 0.008]
+to = [0.0, 0.0]
+[[body]]
+name = "bump"
+shape = "circle"
+center = [0.0025, 0.0005]
+radius = 0.0015
+motion = "fixed"
+[[body]]
+name = "block"
+shape = "polygon"
+vertices = [[0.0065, 0.003], [0.009, 0.003], [0.009, 0.005], [0.0065, 0.005]]
+angle = 0.3
+motion = "fixed"
+)";
+  const Case c = load_case_text(text, "sunk_bodies.toml");
+  Scene sc = build_scene(c);
+  Solver s(sc.params, sc.domain, sc.particles, sc.groups);
+  while (s.time() < 0.05) ASSERT_FALSE(s.step(0.05 - s.time()).has_value());
+  const Particles& P = s.particles();
+  real mass = 0, vmax = 0;
+  for (std::size_t i = P.n_boundary; i < P.size(); ++i) {
+    mass += P.m[i];
+    vmax = std::max(vmax, norm(P.v[i]));
+    ASSERT_TRUE(in_fluid_region(sc.params.walls, s.domain(), P.x[i])) << "fluid particle " << i << " left the box";
+    for (std::size_t b = 0; b < c.bodies.size(); ++b) {
+      const Shape& shape = sc.params.bodies[b].shape;
+      const RigidGroup& g = s.groups()[c.walls.size() + b];
+      const Vec2 local = rotate(P.x[i] - g.pos, std::cos(g.angle), -std::sin(g.angle));
+      ASSERT_GT(shape.signed_distance(local), 0.0) << "fluid particle " << i << " inside body " << b;
+    }
+  }
+  Vec2 total;
+  for (const RigidGroup& g : s.groups()) total += g.force_pressure + g.force_viscous;
+  const real weight = mass * 9.81;
+  std::printf("all solids: (%.3g, %.7g) N/m against the fluid's weight %.7g: ratio %.6f; fastest particle %.3g m/s\n",
+              total.x, total.y, weight, -total.y / weight, vmax);
+  EXPECT_NEAR(-total.y / weight, 1.0, 1e-3);
+  EXPECT_NEAR(total.x / weight, 0.0, 1e-3);
+  EXPECT_LT(vmax, 5e-3);
+}

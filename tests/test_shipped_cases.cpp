@@ -54,7 +54,8 @@ const Coarse kPaper[] = {{"falling_cylinder", "2.5e-4"},
 
 /// The container examples (issue 19) at their shipped level, 10 particles across a body: a
 /// minute (incline_wall) to several minutes (hopper) each on two cores, too long for CI.
-const Coarse kContainers[] = {{"incline_wall", "2e-4"}, {"hopper", "2e-4"}};
+const Coarse kContainers[] = {
+    {"incline_wall", "2e-4"}, {"hopper", "2e-4"}, {"sunk_block", "2e-4"}, {"ring_container", "5e-4"}};
 
 /// gtest names the parameter by its case.
 void PrintTo(const Coarse& k, std::ostream* os) { *os << k.name << " at d0 = " << k.d0; }

@@ -283,34 +283,52 @@ void check_body_sizes(const Case& c, const LoadContext& ctx) {
   }
 }
 
-/// Bodies lie inside the domain box along non-periodic axes; only a half_disc may touch its edge
-/// (it is meant to sit on a wall with its flat side).
+/// Bodies lie inside the domain box along non-periodic axes. A fixed body may touch a domain
+/// edge or reach past it (a block on the floor, a bump sunk into it: the scene leaves out its
+/// part beyond the edge; check_walls_clear_of_bodies checks how it meets a wall there) but not
+/// lie wholly beyond it; of the other bodies only a half_disc may touch an edge (it is meant to
+/// sit on a wall with its flat side).
 void check_bodies_in_domain(const Case& c, const LoadContext& ctx) {
   const real tol = 1e-6 * c.d0;
   const bool periodic[2] = {c.periodic_x, c.periodic_y};
   for (std::size_t k = 0; k < c.bodies.size(); ++k) {
     const BodySpec& b = c.bodies[k];
     const Outline o(b);
-    const bool may_touch = b.shape == BodyShape::HalfDisc;
+    const bool fixed = b.motion == BodyMotion::Fixed;
+    const bool may_touch = fixed || b.shape == BodyShape::HalfDisc;
     for (int axis = 0; axis < 2; ++axis) {
       if (periodic[axis]) continue;
       const char name = axis == 0 ? 'x' : 'y';
       const real lo = axis == 0 ? o.lo.x : o.lo.y, hi = axis == 0 ? o.hi.x : o.hi.y;
       const real min = axis == 0 ? c.domain_min.x : c.domain_min.y;
       const real max = axis == 0 ? c.domain_max.x : c.domain_max.y;
+      if (hi <= min + tol || lo >= max - tol)
+        throw ctx.error(place_key(c, k),
+                        fmt::format("{} lies wholly outside the domain: it spans {} = {:.9g} .. {:.9g} m, the domain "
+                                    "{:.9g} .. {:.9g} m",
+                                    body_text(b), name, lo, hi, min, max));
       for (const auto& [reach, edge, below] : {std::tuple{lo, min, true}, std::tuple{hi, max, false}}) {
         const real outside = below ? edge - reach : reach - edge;  // > 0: beyond the edge
-        if (outside > tol)
+        if (outside > tol && !fixed)
           throw ctx.error(
               place_key(c, k),
               fmt::format("{} lies outside the domain: it reaches {} = {:.9g} m, beyond the domain "
-                          "edge {} = {:.9g} m",
+                          "edge {} = {:.9g} m (only a fixed body may reach past a domain edge)",
                           body_text(b), name, reach, name, edge));
+        const bool wall_there = std::any_of(c.walls.begin(), c.walls.end(), [&](const WallSpec& w) {
+          const real a = axis == 0 ? w.from.x : w.from.y, b = axis == 0 ? w.to.x : w.to.y;
+          return w.shape == WallShape::Segment && std::fabs(a - edge) <= tol && std::fabs(b - edge) <= tol;
+        });
+        if (outside > tol && !wall_there)
+          throw ctx.error(place_key(c, k),
+                          fmt::format("{} reaches past the domain edge {} = {:.9g} m, where no wall lies: a fixed body "
+                                      "may reach past a domain edge only through a wall along it",
+                                      body_text(b), name, edge));
         if (outside >= -tol && !may_touch)
           throw ctx.error(
               place_key(c, k),
               fmt::format("{} touches the domain edge {} = {:.9g} m: leave fluid between them (only a "
-                          "half_disc may sit on a domain edge)",
+                          "fixed body or a half_disc may sit on a domain edge)",
                           body_text(b), name, edge));
       }
     }

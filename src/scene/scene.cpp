@@ -17,6 +17,69 @@ using scene_detail::SurfacePoint;
 Shape body_shape(const BodySpec& b);
 Vec2 body_position(const BodySpec& b, const Shape& s);
 
+namespace {
+
+/// The stretches of the walls that fixed body bp (at pos, turned by angle) covers: where the
+/// wall runs inside the body or along its surface (a flat side standing on it), found d0/16
+/// apart and refined by bisection; and, when part of the body lies beyond the walls or the
+/// domain's edge, the area and centroid of its part in the fluid region (midpoint rule on a
+/// d0/16 grid).
+void find_covers(BodyParams& bp, Vec2 pos, real angle, const std::vector<WallPiece>& walls, const Domain& dom,
+                 real d0) {
+  const real cs = std::cos(angle), sn = std::sin(angle), eps = 1e-6 * d0;
+  const auto covered = [&](const WallPiece& w, real s) {
+    return bp.shape.signed_distance(rotate(w.point_at(s) - pos, cs, -sn)) <= eps;
+  };
+  for (std::size_t k = 0; k < walls.size(); ++k) {
+    const WallPiece& w = walls[k];
+    if (w.nearest(pos).distance > bp.shape.bounding_radius() + eps) continue;
+    const int n = std::max(16, static_cast<int>(std::ceil(16 * w.length() / d0)));
+    bool in = covered(w, 0);
+    real start = 0;
+    for (int i = 1; i <= n; ++i) {
+      const real s = static_cast<real>(i) / n;
+      if (covered(w, s) == in) continue;
+      real a = static_cast<real>(i - 1) / n, b = s;
+      for (int it = 0; it < 60; ++it) {
+        const real m = 0.5 * (a + b);
+        (covered(w, m) == in ? a : b) = m;
+      }
+      const real edge = 0.5 * (a + b);
+      if (in) bp.covers.push_back({k, start, edge});
+      start = edge;
+      in = !in;
+    }
+    if (in) bp.covers.push_back({k, start, 1});
+  }
+  bp.area_in = bp.shape.area();
+  bp.centroid_in = pos;
+  const auto beyond = [&](Vec2 x) {
+    if ((!dom.periodic_x && (x.x < dom.lo.x || x.x > dom.hi.x)) || (!dom.periodic_y && (x.y < dom.lo.y || x.y > dom.hi.y)))
+      return true;
+    return !walls.empty() && signed_wall_distance(walls, dom, x) < 0;
+  };
+  bool cut = false;
+  for (const SurfaceSample& s : bp.samples) cut = cut || beyond(pos + rotate(s.x, cs, sn));
+  if (!cut) return;
+  const real step = d0 / 16, R = bp.shape.bounding_radius();
+  const int m = static_cast<int>(std::ceil(R / step));
+  real area = 0;
+  Vec2 moment;
+  for (int iy = -m; iy < m; ++iy)
+    for (int ix = -m; ix < m; ++ix) {
+      const Vec2 q{(ix + 0.5) * step, (iy + 0.5) * step};
+      if (bp.shape.signed_distance(q) >= 0) continue;
+      const Vec2 x = pos + rotate(q, cs, sn);
+      if (beyond(x)) continue;
+      area += step * step;
+      moment += (step * step) * x;
+    }
+  bp.area_in = area;
+  bp.centroid_in = area > 0 ? moment / area : pos;
+}
+
+}  // namespace
+
 PhysicsParams physics_params(const Case& c) {
   PhysicsParams p;
   p.d0 = c.d0;
@@ -51,9 +114,13 @@ PhysicsParams physics_params(const Case& c) {
   p.collision_lubrication = c.collision_lubrication;
   p.collision_lubrication_range = c.collision_lubrication_range;
   for (const auto& w : c.walls) p.walls.push_back(w.piece());
+  const Domain dom{c.domain_min, c.domain_max, c.periodic_x, c.periodic_y};
   for (const auto& b : c.bodies) {
     BodyParams bp{b.name, body_shape(b), {}, b.motion, b.velocity, b.omega, b.schedule};
     bp.samples = bp.shape.sample_surface(c.d0);
+    bp.area_in = bp.shape.area();
+    bp.centroid_in = body_position(b, bp.shape);
+    if (b.motion == BodyMotion::Fixed) find_covers(bp, body_position(b, bp.shape), b.angle, p.walls, dom, c.d0);
     p.bodies.push_back(std::move(bp));
   }
   return p;
@@ -119,6 +186,20 @@ PlacedSample place_on_walls(const SurfaceSample& smp, Vec2 x, real cth, real sth
     }
   }
   return out;
+}
+
+/// Whether the surface sample x of a fixed body is hidden from the fluid by the walls: beyond a
+/// wall (outside the region the walls enclose) or beyond the domain's edge along a non-periodic
+/// axis, or within d0/2 of a point where the body crosses a wall (the junction particle there
+/// stands for it).
+bool hidden_by_walls(Vec2 x, const std::vector<WallPiece>& walls, const Domain& dom,
+                     const std::vector<scene_detail::Crossing>& crossings, real d0) {
+  if ((!dom.periodic_x && (x.x < dom.lo.x || x.x > dom.hi.x)) || (!dom.periodic_y && (x.y < dom.lo.y || x.y > dom.hi.y)))
+    return true;
+  if (!walls.empty() && signed_wall_distance(walls, dom, x) < 0) return true;
+  for (const auto& cr : crossings)
+    if (norm(x - cr.x) < 0.5 * d0) return true;
+  return false;
 }
 
 /// Signed distance from x to the nearest body (world frame), +inf without bodies.
@@ -271,6 +352,23 @@ Scene build_scene(const Case& c) {
     g.inertia = bs.density * bp.shape.polar_moment();
     g.first = bx.size();
     const real cth = std::cos(bs.angle), sth = std::sin(bs.angle);
+    const auto add_surface = [&](Vec2 x, Vec2 local, Vec2 normal_local, real ds, real volume_factor) {
+      bx.push_back(x);
+      blocal.push_back(local);
+      bn.push_back(normal_local);
+      bds.push_back(ds);
+      bvol.push_back(ds * d0 * volume_factor);
+      bk.push_back(Kind::Boundary);
+      bsrc.push_back(-1);
+      bgroup.push_back(static_cast<std::int32_t>(sc.groups.size()));
+    };
+    // A fixed body crossing a wall: the points where its surface meets the wall (junctions).
+    std::vector<scene_detail::Crossing> crossings;
+    if (g.motion == Motion::Fixed)
+      for (const WallPiece& w : sc.params.walls) {
+        const auto found = scene_detail::body_wall_crossings(bp.shape, g.pos, bs.angle, w, d0);
+        crossings.insert(crossings.end(), found.begin(), found.end());
+      }
     std::vector<std::size_t> kept;  // indices into bp.samples of the surface particles made
     for (std::size_t s = 0; s < bp.samples.size(); ++s) {
       const SurfaceSample& smp = bp.samples[s];
@@ -283,17 +381,22 @@ Scene build_scene(const Case& c) {
         if (ps.junction) {
           normal = rotate(ps.normal, cth, -sth);  // back to the body frame
           volume_factor = ps.volume_factor;
+        } else if (hidden_by_walls(x, sc.params.walls, dom, crossings, d0)) {
+          continue;
         }
       }
       kept.push_back(s);
-      bx.push_back(x);
-      blocal.push_back(smp.x);
-      bn.push_back(normal);
-      bds.push_back(smp.ds);
-      bvol.push_back(smp.ds * d0 * volume_factor);
-      bk.push_back(Kind::Boundary);
-      bsrc.push_back(-1);
-      bgroup.push_back(static_cast<std::int32_t>(sc.groups.size()));
+      add_surface(x, smp.x, normal, smp.ds, volume_factor);
+    }
+    // Each crossing is a concave corner of the fluid between the body's free side and the wall,
+    // like a box corner: a surface particle there with the bisector normal and the corner's
+    // volume factor, standing for d0 of surface (half on each side).
+    for (const auto& cr : crossings) {
+      const Vec2 bisector = cr.body_normal + cr.wall_normal;
+      if (norm(bisector) < 1e-12) continue;
+      const Vec2 n = bisector / norm(bisector);
+      add_surface(cr.x, rotate(cr.x - g.pos, cth, -sth), rotate(n, cth, -sth), d0,
+                  corner_volume_factor(cr.wall_normal, cr.body_normal));
     }
     if (c.boundary == BoundaryModel::Dummy) {
       // Dummy particles on a body-frame lattice inside the solid, up to ceil(h/d0) spacings deep.
@@ -302,7 +405,9 @@ Scene build_scene(const Case& c) {
         for (int ix = -m; ix <= m; ++ix) {
           const Vec2 q{ix * d0, iy * d0};
           const real sd = bp.shape.signed_distance(q);
-          if (sd > -0.5 * d0 || sd < -(dummy_layers + 0.5) * d0) continue;
+          if (sd > -0.5 * d0 || sd < -(dummy_layers + 0.5) * d0 || kept.empty()) continue;
+          // the part of a body beyond a wall has the wall's dummies behind it
+          if (!crossings.empty() && hidden_by_walls(g.pos + rotate(q, cth, sth), sc.params.walls, dom, {}, d0)) continue;
           std::size_t nearest = 0;  // among the surface particles made
           for (std::size_t s2 = 1; s2 < kept.size(); ++s2)
             if (norm2(bp.samples[kept[s2]].x - q) < norm2(bp.samples[kept[nearest]].x - q)) nearest = s2;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "particula/case/case.hpp"
+#include "particula/geometry/shape.hpp"
 #include "particula/neighbors/domain.hpp"
 
 namespace particula::scene_detail {
@@ -29,6 +30,17 @@ std::vector<std::pair<Vec2, std::size_t>> dummy_points(const std::vector<Surface
 
 /// Volume factor of a corner particle whose two walls have the fluid-side normals n1 and n2.
 real corner_volume_factor(Vec2 n1, Vec2 n2);
+
+/// A point where a fixed body's surface crosses a wall (scene_junctions.cpp): on both, with the
+/// body's outward normal and the wall's fluid-side normal there (world frame).
+struct Crossing {
+  Vec2 x, body_normal, wall_normal;
+};
+
+/// The points where the surface of `shape`, placed at `pos` turned by `angle`, crosses `wall`:
+/// sign changes of the body's signed distance along the wall (walked d0/16 apart), refined by
+/// bisection. A wall that only touches the body is not crossed.
+std::vector<Crossing> body_wall_crossings(const Shape& shape, Vec2 pos, real angle, const WallPiece& wall, real d0);
 
 /// x moved to its periodic image nearest the wall's middle.
 Vec2 image_near(const WallPiece& w, const Domain& dom, Vec2 x);

@@ -33,6 +33,17 @@ struct BodyParams {
   Vec2 velocity;                       // prescribed constant velocity (no schedule)
   real omega = 0;
   std::vector<MotionKnot> schedule;    // prescribed piecewise-linear motion
+  // A fixed body standing on walls or crossing them (scene: its part beyond the walls left out):
+  // the stretches of walls it covers, and the area of its part in the fluid region with that
+  // part's centroid (world frame). The smooth pressure's force on it is taken over its wetted
+  // surface from these (Solver::smooth_pressure_load). Other bodies: the whole body.
+  struct Cover {
+    std::size_t wall = 0;
+    real s0 = 0, s1 = 0;  // fractions along the wall
+  };
+  std::vector<Cover> covers;
+  real area_in = 0;
+  Vec2 centroid_in;
 };
 
 /// Everything the physics needs, in SI units (filled from a Case by the scene builder).
