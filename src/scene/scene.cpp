@@ -27,37 +27,15 @@ namespace {
 void find_covers(BodyParams& bp, Vec2 pos, real angle, const std::vector<WallPiece>& walls, const Domain& dom,
                  real d0) {
   const real cs = std::cos(angle), sn = std::sin(angle), eps = 1e-6 * d0;
-  const auto covered = [&](const WallPiece& w, real s) {
-    return bp.shape.signed_distance(rotate(w.point_at(s) - pos, cs, -sn)) <= eps;
-  };
   for (std::size_t k = 0; k < walls.size(); ++k) {
     const WallPiece& w = walls[k];
     if (w.nearest(pos).distance > bp.shape.bounding_radius() + eps) continue;
-    const int n = std::max(16, static_cast<int>(std::ceil(16 * w.length() / d0)));
-    bool in = covered(w, 0);
-    real start = 0;
-    for (int i = 1; i <= n; ++i) {
-      const real s = static_cast<real>(i) / n;
-      if (covered(w, s) == in) continue;
-      real a = static_cast<real>(i - 1) / n, b = s;
-      for (int it = 0; it < 60; ++it) {
-        const real m = 0.5 * (a + b);
-        (covered(w, m) == in ? a : b) = m;
-      }
-      const real edge = 0.5 * (a + b);
-      if (in) bp.covers.push_back({k, start, edge});
-      start = edge;
-      in = !in;
-    }
-    if (in) bp.covers.push_back({k, start, 1});
+    const auto covered = [&](real s) { return bp.shape.signed_distance(rotate(w.point_at(s) - pos, cs, -sn)) <= eps; };
+    for (const auto& [s0, s1] : scene_detail::wall_stretches(w, covered, d0)) bp.covers.push_back({k, s0, s1});
   }
   bp.area_in = bp.shape.area();
   bp.centroid_in = pos;
-  const auto beyond = [&](Vec2 x) {
-    if ((!dom.periodic_x && (x.x < dom.lo.x || x.x > dom.hi.x)) || (!dom.periodic_y && (x.y < dom.lo.y || x.y > dom.hi.y)))
-      return true;
-    return !walls.empty() && signed_wall_distance(walls, dom, x) < 0;
-  };
+  const auto beyond = [&](Vec2 x) { return scene_detail::beyond_walls(x, walls, dom); };
   bool cut = false;
   for (const SurfaceSample& s : bp.samples) cut = cut || beyond(pos + rotate(s.x, cs, sn));
   if (!cut) return;
@@ -194,9 +172,7 @@ PlacedSample place_on_walls(const SurfaceSample& smp, Vec2 x, real cth, real sth
 /// stands for it).
 bool hidden_by_walls(Vec2 x, const std::vector<WallPiece>& walls, const Domain& dom,
                      const std::vector<scene_detail::Crossing>& crossings, real d0) {
-  if ((!dom.periodic_x && (x.x < dom.lo.x || x.x > dom.hi.x)) || (!dom.periodic_y && (x.y < dom.lo.y || x.y > dom.hi.y)))
-    return true;
-  if (!walls.empty() && signed_wall_distance(walls, dom, x) < 0) return true;
+  if (scene_detail::beyond_walls(x, walls, dom)) return true;
   for (const auto& cr : crossings)
     if (norm(x - cr.x) < 0.5 * d0) return true;
   return false;

@@ -2,6 +2,7 @@
 // baseline boundary, the corner volume factor and the region the walls enclose.
 #pragma once
 
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -37,10 +38,19 @@ struct Crossing {
   Vec2 x, body_normal, wall_normal;
 };
 
+/// The stretches [s0, s1] of `wall` (fractions along it) where holds(s) is true: walked d0/16
+/// apart, each change refined by bisection (scene_junctions.cpp).
+std::vector<std::pair<real, real>> wall_stretches(const WallPiece& wall, const std::function<bool(real)>& holds,
+                                                  real d0);
+
 /// The points where the surface of `shape`, placed at `pos` turned by `angle`, crosses `wall`:
-/// sign changes of the body's signed distance along the wall (walked d0/16 apart), refined by
-/// bisection. A wall that only touches the body is not crossed.
+/// the ends of the wall's stretches inside the body. A wall that only touches the body (a flat
+/// side lying on it) is not crossed.
 std::vector<Crossing> body_wall_crossings(const Shape& shape, Vec2 pos, real angle, const WallPiece& wall, real d0);
+
+/// Whether x lies beyond the walls (outside the region they enclose) or beyond the domain's
+/// edge along a non-periodic axis.
+bool beyond_walls(Vec2 x, const std::vector<WallPiece>& walls, const Domain& dom);
 
 /// x moved to its periodic image nearest the wall's middle.
 Vec2 image_near(const WallPiece& w, const Domain& dom, Vec2 x);
