@@ -3,7 +3,10 @@
 // neutrally buoyant body at rest.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "case_builders.hpp"
 #include "particula/bodies/collision.hpp"
@@ -70,6 +73,60 @@ TEST(Shapes, SquareRingHasTheExactAreaAndMoment) {
   s.distance_and_gradient({0.2, 0}, d, n);
   EXPECT_NEAR(d, 0.3, 1e-12);
   EXPECT_NEAR(norm(n - Vec2{-1, 0}), 0.0, 1e-12) << "out of the solid into the hole";
+}
+
+namespace {
+
+/// Signed distance to closed loops by brute force: the nearest point of every edge, and the
+/// even-odd rule for the sign (the test's own reference for the shape's edge grid).
+real brute_signed_distance(const std::vector<std::vector<Vec2>>& loops, Vec2 p) {
+  real d2 = 1e300;
+  bool in = false;
+  for (const auto& v : loops)
+    for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
+      if ((v[i].y > p.y) != (v[j].y > p.y) && p.x < (v[j].x - v[i].x) * (p.y - v[i].y) / (v[j].y - v[i].y) + v[i].x)
+        in = !in;
+      const Vec2 e = v[i] - v[j];
+      const real s = std::clamp(dot(p - v[j], e) / norm2(e), 0.0, 1.0);
+      d2 = std::min(d2, norm2(p - (v[j] + s * e)));
+    }
+  return in ? -std::sqrt(d2) : std::sqrt(d2);
+}
+
+}  // namespace
+
+TEST(Shapes, ManyEdgedPolygonsGiveTheBruteForceSignedDistance) {
+  // A 40-point star with a 126-gon hole and a triangular hole: its nearest edge comes from a grid
+  // of cells; every distance and side must be the brute force's, inside, near and far outside.
+  std::vector<Vec2> star, ring, tri = {{0.5, -0.2}, {0.5, -0.4}, {0.3, -0.3}};
+  for (int k = 0; k < 40; ++k) {
+    const real a = 2 * M_PI * k / 40, r = k % 2 ? 1.0 : 1.6;
+    star.push_back({r * std::cos(a), r * std::sin(a)});
+  }
+  for (int k = 0; k < 126; ++k) {
+    const real a = 2 * M_PI * k / 126;
+    ring.push_back({0.2 * std::cos(a) - 0.2, 0.2 * std::sin(a) + 0.1});
+  }
+  const Shape s = Shape::polygon(star, {ring, tri});
+  const Vec2 c = s.centroid_offset();
+  std::vector<std::vector<Vec2>> loops = {star, ring, tri};
+  for (auto& loop : loops)
+    for (Vec2& p : loop) p = p - c;  // the shape's body frame
+  std::uint64_t state = 12345;
+  const auto uniform = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<real>(state >> 11) / static_cast<real>(1ULL << 53);
+  };
+  for (int k = 0; k < 20000; ++k) {
+    const real span = k % 10 == 0 ? 20.0 : 4.0;  // one in ten far outside the grid
+    const Vec2 p{span * (uniform() - 0.5), span * (uniform() - 0.5)};
+    const real expected = brute_signed_distance(loops, p);
+    ASSERT_NEAR(s.signed_distance(p), expected, 1e-12) << "at (" << p.x << ", " << p.y << ")";
+    real d = 0;
+    Vec2 n;
+    s.distance_and_gradient(p, d, n);
+    ASSERT_NEAR(d, expected, 1e-12);
+  }
 }
 
 TEST(Shapes, SurfaceSamplesCoverThePerimeterWithOutwardNormals) {

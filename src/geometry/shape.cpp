@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "edge_grid.hpp"
+
 namespace particula {
 
 namespace {
@@ -88,6 +90,9 @@ Shape Shape::ellipse(real a, real b) {
 
 namespace {
 
+/// Polygons of at least this many edges find their nearest edge through a grid of cells.
+constexpr std::size_t kGridEdges = 16;
+
 /// Twice the signed area of a closed loop (positive when counter-clockwise).
 real twice_signed_area(const std::vector<Vec2>& v) {
   real a = 0;
@@ -164,6 +169,9 @@ Shape Shape::polygon(std::vector<Vec2> v, std::vector<std::vector<Vec2>> holes) 
   }
   s.min_width_ = std::min(w, closest_loops(loops));
   s.loops_ = std::move(loops);
+  std::size_t edges = 0;
+  for (const auto& loop : s.loops_) edges += loop.size();
+  if (edges >= kGridEdges) s.grid_ = std::make_shared<const geometry_detail::EdgeGrid>(s.loops_);
   return s;
 }
 
@@ -222,6 +230,7 @@ Vec2 Shape::closest_point(Vec2 p) const {
       return ellipse_point(a_, b_, t);
     }
     case ShapeKind::Polygon: {
+      if (grid_) return grid_->nearest(p).point;
       Vec2 best = loops_[0][0];
       real bd = 1e300;
       for (const auto& loop : loops_)
@@ -262,8 +271,23 @@ bool Shape::contains(Vec2 p) const {
   return false;
 }
 
+real Shape::polygon_distance(Vec2 p, Vec2& q) const {
+  if (grid_) {
+    const geometry_detail::PolygonNearest n = grid_->nearest(p);
+    q = n.point;
+    return n.inside ? -n.distance : n.distance;
+  }
+  q = closest_point(p);
+  const real d = norm(p - q);
+  return contains(p) ? -d : d;
+}
+
 real Shape::signed_distance(Vec2 p) const {
   if (kind_ == ShapeKind::Circle) return norm(p) - a_;
+  if (kind_ == ShapeKind::Polygon) {
+    Vec2 q;
+    return polygon_distance(p, q);
+  }
   const real d = norm(p - closest_point(p));
   return contains(p) ? -d : d;
 }
@@ -287,10 +311,17 @@ void Shape::distance_and_gradient(Vec2 p, real& d, Vec2& n) const {
     n = unit(p);
     return;
   }
-  const Vec2 q = closest_point(p);
-  const bool inside = contains(p);
-  const real dist = norm(p - q);
-  d = inside ? -dist : dist;
+  Vec2 q;
+  real sd = 0;
+  if (kind_ == ShapeKind::Polygon) {
+    sd = polygon_distance(p, q);
+  } else {
+    q = closest_point(p);
+    sd = contains(p) ? -norm(p - q) : norm(p - q);
+  }
+  const bool inside = sd < 0;
+  const real dist = std::fabs(sd);
+  d = sd;
   if (kind_ == ShapeKind::Ellipse) n = ellipse_normal(a_, b_, q);
   else if (dist > 1e-12 * bound_) n = unit(inside ? q - p : p - q);
   else n = unit(p);  // on the surface: the radial direction

@@ -3,12 +3,17 @@
 // The body frame's origin is the area centroid; `angle` rotates body to world frame.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "particula/core/types.hpp"
 
 namespace particula {
+
+namespace geometry_detail {
+class EdgeGrid;
+}
 
 enum class ShapeKind { Circle, Ellipse, Polygon, HalfDisc };
 
@@ -66,9 +71,12 @@ class Shape {
   // Polygon: the outline counter-clockwise, then each hole clockwise, so that the solid is on
   // the left of every loop (shoelace sums over all loops give the solid's area and moments).
   std::vector<std::vector<Vec2>> loops_;
+  std::shared_ptr<const geometry_detail::EdgeGrid> grid_;  // polygons of many edges: nearest edge by cells
   real area_ = 0, polar_ = 0, bound_ = 0, min_width_ = 0;
   Vec2 centroid_offset_;
   Vec2 closest_point(Vec2 p) const;
+  /// Polygon: signed distance (negative in the solid) and the nearest boundary point.
+  real polygon_distance(Vec2 p, Vec2& q) const;
 };
 
 }  // namespace particula
