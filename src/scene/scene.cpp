@@ -94,7 +94,7 @@ PhysicsParams physics_params(const Case& c) {
   for (const auto& w : c.walls) p.walls.push_back(w.piece());
   const Domain dom{c.domain_min, c.domain_max, c.periodic_x, c.periodic_y};
   for (const auto& b : c.bodies) {
-    BodyParams bp{b.name, body_shape(b), {}, b.motion, b.velocity, b.omega, b.schedule};
+    BodyParams bp{b.name, body_shape(b), {}, b.motion, b.velocity, b.omega, b.schedule, {}, 0, {}};
     bp.samples = bp.shape.sample_surface(c.d0);
     bp.area_in = bp.shape.area();
     bp.centroid_in = body_position(b, bp.shape);
