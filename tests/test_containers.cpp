@@ -210,6 +210,7 @@ TEST(Containers, SpinUpTorqueConvergesToTheExactSolution) {
     std::printf("d0 = %g: torque %.6g N m/m, exact %.6g: error %+.3f %%; velocity L2 error %.4f %% of omega R\n",
                 levels[k], s.groups()[0].torque, exact, 100 * err[k], 100 * velocity_error);
     EXPECT_EQ(s.counters().wall_pressure_extrapolated, 0) << "a smooth wall has no corners";
+    EXPECT_EQ(s.counters().wall_pressure_extrapolated_far, 0) << "no gap narrower than the kernel";
     if (k == 2) {
       EXPECT_LT(velocity_error, 1.5e-3);
     }

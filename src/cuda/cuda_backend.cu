@@ -134,7 +134,8 @@ __global__ void group_loads_kernel(const GroupRange* ranges, const Kind* kind, c
 }
 
 enum Counter {
-  kSingularB = 0, kSingularBhat, kWallKept, kWallExtrapolated, kNormalFallback, kSurfacePushed, kGapSqueezed, kIsolatedLeftOut,
+  kSingularB = 0, kSingularBhat, kWallKept, kWallExtrapolated, kWallExtrapolatedFar, kNormalFallback, kSurfacePushed,
+  kGapSqueezed, kIsolatedLeftOut,
   kUnhealthy,
   kCounters
 };
@@ -405,6 +406,7 @@ class CudaBackend final : public DeviceBackend {
         const WallPressureOutcome o = wall_pressure_at(c, i, p, rho, normal[i], acc[i], s.nu * lapV[i], s.f, min_den, p_new[i]);
         if (o == WallPressureOutcome::Kept) atomicAdd(&counters[kWallKept], 1ull);
         if (o == WallPressureOutcome::Extrapolated) atomicAdd(&counters[kWallExtrapolated], 1ull);
+        if (o == WallPressureOutcome::ExtrapolatedFar) atomicAdd(&counters[kWallExtrapolatedFar], 1ull);
       });
       each(0, nb_, [=] __device__(std::size_t i) {
         if (kind[i] != Kind::Boundary) return;
@@ -631,6 +633,7 @@ class CudaBackend final : public DeviceBackend {
     cnt.singular_Bhat += static_cast<std::int64_t>(h[kSingularBhat]);
     cnt.wall_pressure_kept += static_cast<std::int64_t>(h[kWallKept]);
     cnt.wall_pressure_extrapolated += static_cast<std::int64_t>(h[kWallExtrapolated]);
+    cnt.wall_pressure_extrapolated_far += static_cast<std::int64_t>(h[kWallExtrapolatedFar]);
     cnt.normal_fallback += static_cast<std::int64_t>(h[kNormalFallback]);
     cnt.surface_pushed += static_cast<std::int64_t>(h[kSurfacePushed]);
     cnt.gap_squeezed += static_cast<std::int64_t>(h[kGapSqueezed]);

@@ -312,10 +312,12 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
                       solver.time(), solver.step_count(), wall, wall > 0 ? stats.particle_steps / wall : 0.0,
                       omp_get_max_threads()));
   rep.say(fmt::format("guard events: singular B {}, singular Bhat at fluid particles {}, wall pressure kept {}, "
-                      "extrapolated at corners {}, normal fallback {}, surface guard {} (closing gaps {}), "
-                      "isolated particles left out of P.20 {}",
+                      "extrapolated where ill-conditioned (corners, contact wedges) {}, extrapolated in narrow gaps {}, "
+                      "normal fallback {}, surface "
+                      "guard {} (closing gaps {}), isolated particles left out of P.20 {}",
                       cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.wall_pressure_extrapolated,
-                      cnt.normal_fallback, cnt.surface_pushed, cnt.gap_squeezed, cnt.isolated_left_out));
+                      cnt.wall_pressure_extrapolated_far, cnt.normal_fallback, cnt.surface_pushed, cnt.gap_squeezed,
+                      cnt.isolated_left_out));
   const char* compared = c.exact == ExactSolution::SpinUp ? "velocity" : "vx";
   if (particle_error)
     rep.say(fmt::format("L2 error of the fluid particles' {} against the exact solution: {:.4f} % of the peak speed",

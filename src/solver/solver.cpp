@@ -279,9 +279,9 @@ void Solver::boundary_pressure() {
   const SweepContext c = sweep_context();
   p_new_.resize(nb);
   const real min_den = wall_pressure_min_den(prm_.rho0, prm_.h);
-  std::int64_t kept = 0, extrapolated = 0;
+  std::int64_t kept = 0, extrapolated = 0, far = 0;
   for (int sweep = 0; sweep < prm_.wall_pressure_sweeps; ++sweep) {
-#pragma omp parallel for schedule(static) reduction(+ : kept, extrapolated)
+#pragma omp parallel for schedule(static) reduction(+ : kept, extrapolated, far)
     for (std::size_t i = 0; i < nb; ++i) {
       p_new_[i] = P_.p[i];
       if (P_.kind[i] != Kind::Boundary) continue;
@@ -290,6 +290,7 @@ void Solver::boundary_pressure() {
                            min_den, p_new_[i]);
       kept += o == WallPressureOutcome::Kept ? 1 : 0;
       extrapolated += o == WallPressureOutcome::Extrapolated ? 1 : 0;
+      far += o == WallPressureOutcome::ExtrapolatedFar ? 1 : 0;
     }
     for (std::size_t i = 0; i < nb; ++i) {
       if (P_.kind[i] != Kind::Boundary) continue;
@@ -299,6 +300,7 @@ void Solver::boundary_pressure() {
   }
   counters_.wall_pressure_kept += kept;
   counters_.wall_pressure_extrapolated += extrapolated;
+  counters_.wall_pressure_extrapolated_far += far;
   // Isolated fluid particles take their pressure from the surfaces around them (sweeps.hpp).
   const std::size_t n = isolated_.size() == P_.size() ? P_.size() : nb;
 #pragma omp parallel for schedule(static)

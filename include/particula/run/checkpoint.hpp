@@ -33,7 +33,7 @@
 namespace particula {
 
 /// Bump when the layout or any field list below changes; older files are then refused.
-inline constexpr std::uint32_t kCheckpointVersion = 7;
+inline constexpr std::uint32_t kCheckpointVersion = 8;
 
 /// When an output stream ("bodies", "snapshots", "probe:<name>") was last written on its
 /// regular schedule. A resumed run drops rows after this time (the extra final-state rows of an
@@ -104,7 +104,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file);
 
 inline constexpr std::size_t kParticlesFields = 15;  // n_boundary + 14 arrays
 inline constexpr std::size_t kRigidGroupFields = 25;
-inline constexpr std::size_t kSolverCountersFields = 8;
+inline constexpr std::size_t kSolverCountersFields = 9;
 
 template <class Ar, class P>
 void particles_fields(Ar& ar, P& p) {
@@ -162,6 +162,7 @@ void solver_counters_fields(Ar& ar, C& c) {
   ar(c.singular_Bhat);
   ar(c.wall_pressure_kept);
   ar(c.wall_pressure_extrapolated);
+  ar(c.wall_pressure_extrapolated_far);
   ar(c.normal_fallback);
   ar(c.surface_pushed);
   ar(c.gap_squeezed);

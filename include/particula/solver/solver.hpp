@@ -86,7 +86,8 @@ struct SolverCounters {
   std::int64_t singular_B = 0;      // renormalization matrix singular -> B = I
   std::int64_t singular_Bhat = 0;   // fluid particle's Laplacian system singular -> Bhat = k I
   std::int64_t wall_pressure_kept = 0;  // P.20 denominator vanished -> previous P kept
-  std::int64_t wall_pressure_extrapolated = 0;  // P.20 ill-conditioned (sharp corner) -> extrapolated
+  std::int64_t wall_pressure_extrapolated = 0;  // P.20 ill-conditioned (sharp corner, contact wedge) -> extrapolated
+  std::int64_t wall_pressure_extrapolated_far = 0;  // fluid out of P.20's reach (narrow gap) -> extrapolated
   std::int64_t normal_fallback = 0;     // P.18 sum vanished -> analytic normal used
   std::int64_t surface_pushed = 0;      // fluid particle put back to the keep-out distance of a surface
   std::int64_t gap_squeezed = 0;        // fluid particle centred in a gap narrower than twice that
@@ -99,6 +100,7 @@ inline std::vector<std::pair<const char*, std::int64_t>> guard_events(const Solv
           {"singular_Bhat", c.singular_Bhat},
           {"wall_pressure_kept", c.wall_pressure_kept},
           {"wall_pressure_extrapolated", c.wall_pressure_extrapolated},
+          {"wall_pressure_extrapolated_far", c.wall_pressure_extrapolated_far},
           {"normal_fallback", c.normal_fallback},
           {"surface_pushed", c.surface_pushed},
           {"gap_squeezed", c.gap_squeezed},

@@ -256,8 +256,8 @@ PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContext& c, std::si
     if (c.isolated && j >= c.nb && c.isolated[j]) continue;  // an isolated particle (surface_guard.hpp)
     wall_pressure_pair(s, c.grad_w[k], n, p[j], 0.5 * (rhoi + rho[j]), j >= c.nb);
   }
-  if (wall_pressure_well_conditioned(s, min_den) && wall_pressure(s, a, nu_lap_v, f, n, p_out))
-    return WallPressureOutcome::Solved;
+  const bool conditioned = wall_pressure_well_conditioned(s);
+  if (conditioned && s.den >= min_den && wall_pressure(s, a, nu_lap_v, f, n, p_out)) return WallPressureOutcome::Solved;
   WallExtrapolationSums e;
   const Vec2 xi = c.x[i], balance = f + nu_lap_v - a;
   for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
@@ -267,7 +267,8 @@ PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContext& c, std::si
     const Vec2 x_ji = c.domain.separation(c.x[j], xi);
     wall_extrapolation_pair(e, c.kernel.W(norm(x_ji)), p[j], rho[j], x_ji, balance);
   }
-  return wall_extrapolation(e, p_out) ? WallPressureOutcome::Extrapolated : WallPressureOutcome::Kept;
+  if (!wall_extrapolation(e, p_out)) return WallPressureOutcome::Kept;
+  return conditioned && s.den < min_den ? WallPressureOutcome::ExtrapolatedFar : WallPressureOutcome::Extrapolated;
 }
 
 /// Pressure of an isolated fluid particle (surface_guard.hpp, `isolated`; docs/method-notes.md,
