@@ -148,9 +148,41 @@ TEST(SharpCorners, AcutePolygonsFallWithoutBlowingUp) {
     std::printf("sharp polygon after %.4f s: v = (%.3g, %.3g) m/s, omega = %.3g rad/s, %lld corner extrapolations\n",
                 t, g.vel.x, g.vel.y, g.omega, static_cast<long long>(s.counters().wall_pressure_extrapolated));
     EXPECT_GT(s.counters().wall_pressure_extrapolated, 0);
+    EXPECT_EQ(s.counters().wall_pressure_extrapolated_far, 0) << "no gap: the corners are ill-conditioned, not far";
     // Sinking, slower than free fall with buoyancy and added mass ((rho_s - rho_f) g t / (rho_s + rho_f)).
     EXPECT_LT(g.vel.y, 0.0);
     EXPECT_GT(g.vel.y, -1.2 * 0.25 * 9.81 * t / 2.25);
     EXPECT_LT(std::fabs(g.vel.x), 0.2 * std::fabs(g.vel.y));
   }
+}
+
+// A cylinder held 0.5 d0 above the floor of a box of fluid at rest (its contact distance): the
+// surface particles facing the gap have no fluid within P.20's reach, and their extrapolations
+// are counted as such (`wall_pressure_extrapolated_far`, "extrapolated in narrow gaps"), apart
+// from the ill-conditioned ones of corners and contact wedges; the same cylinder in the middle of
+// the box has neither.
+TEST(WallPressure, FluidOutOfReachInANarrowGapIsCountedApartFromCorners) {
+  auto run = [](real gap_d0) {
+    const real d0 = 2e-4, R = 1e-3;
+    Case c = cases::closed_box(0.008, 0.006, d0);
+    BodySpec b;
+    b.name = "resting";
+    b.shape = BodyShape::Circle;
+    b.radius = R;
+    b.center = {0.004, R + gap_d0 * d0};
+    b.density = 2000;
+    b.motion = BodyMotion::Fixed;
+    c.bodies.push_back(b);
+    Scene sc = build_scene(c);
+    Solver s(sc.params, sc.domain, sc.particles, sc.groups);
+    for (int k = 0; k < 20; ++k) EXPECT_FALSE(s.step().has_value());
+    std::printf("cylinder %.2g d0 above the floor: extrapolated ill-conditioned %lld, out of reach %lld\n", gap_d0,
+                static_cast<long long>(s.counters().wall_pressure_extrapolated),
+                static_cast<long long>(s.counters().wall_pressure_extrapolated_far));
+    return s.counters();
+  };
+  const SolverCounters resting = run(0.5), free = run(10);
+  EXPECT_GT(resting.wall_pressure_extrapolated_far, 0);
+  EXPECT_EQ(free.wall_pressure_extrapolated_far, 0);
+  EXPECT_EQ(free.wall_pressure_extrapolated, 0);
 }
