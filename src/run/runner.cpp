@@ -312,9 +312,9 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
                       solver.time(), solver.step_count(), wall, wall > 0 ? stats.particle_steps / wall : 0.0,
                       omp_get_max_threads()));
   rep.say(fmt::format("guard events: singular B {}, singular Bhat at fluid particles {}, wall pressure kept {}, "
-                      "extrapolated where ill-conditioned (corners, contact wedges) {}, extrapolated in narrow gaps {}, "
-                      "normal fallback {}, surface "
-                      "guard {} (closing gaps {}), isolated particles left out of P.20 {}",
+                      "extrapolated where ill-conditioned (corners, contact wedges) {}, extrapolated in narrow "
+                      "gaps {}, normal fallback {}, surface guard {} (closing gaps {}), isolated particles left "
+                      "out of P.20 {}",
                       cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.wall_pressure_extrapolated,
                       cnt.wall_pressure_extrapolated_far, cnt.normal_fallback, cnt.surface_pushed, cnt.gap_squeezed,
                       cnt.isolated_left_out));

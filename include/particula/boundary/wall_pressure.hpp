@@ -45,9 +45,9 @@ PARTICULA_HD bool wall_pressure(const WallPressureSums& s, Vec2 a, Vec2 nu_lap_v
 
 /// How a boundary particle's pressure was set in a sweep: P.20 solved; extrapolated because P.20
 /// is ill-conditioned (the fluid wraps round the particle: sharp convex corners, and the wedges
-/// beside two surfaces in contact); extrapolated
-/// because the fluid neighbours are too far from the surface to carry the normal derivative (a
-/// gap narrower than the kernel, wall_pressure_min_den); previous pressure kept.
+/// beside two surfaces in contact); extrapolated because the fluid neighbours are too far from
+/// the surface to carry the normal derivative (a gap narrower than the kernel,
+/// wall_pressure_min_den); previous pressure kept.
 enum class WallPressureOutcome { Solved, Extrapolated, ExtrapolatedFar, Kept };
 
 /// P.20 is solved where it is well conditioned: its denominator at least this fraction of the
