@@ -54,8 +54,8 @@ const Coarse kPaper[] = {{"falling_cylinder", "2.5e-4"},
 
 /// The container examples (issue 19) at their shipped level, 10 particles across a body: a
 /// minute (incline_wall) to several minutes (hopper) each on two cores, too long for CI. Session 14:
-/// sunk_block and ring_container pass; session 15: incline_wall passes (it stopped at 0.547 s
-/// until the fill next to walls shared removed cells among equally near kept points).
+/// sunk_block and ring_container pass; session 15: all four pass (incline_wall had stopped at
+/// 0.547 s until the fill next to walls shared removed cells among equally near kept points).
 const Coarse kContainers[] = {
     {"incline_wall", "2e-4"}, {"hopper", "2e-4"}, {"sunk_block", "2e-4"}, {"ring_container", "5e-4"}};
 
