@@ -234,8 +234,9 @@ TEST(Containers, SpinUpTorqueConvergesToTheExactSolution) {
 // time; at 20 across: +0.009 % and +0.0025 %, docs/validation.md), at t = 0.3 s (12 viscous
 // times of the gap). Steady torque on the cylinder -4 pi mu omega R1^2 R2^2 /
 // (R2^2 - R1^2); the wall's torque about the centre must balance it. Particle shifting is off
-// here: with the default beta = 0.05 the cell drifts (cylinder torque -0.35 %, imbalance 0.45 % at
-// 0.6 s; docs/validation.md), which is shifting's, not the loads'.
+// here: with the default beta = 0.05 the reported torques drift (cylinder -0.35 %, imbalance 0.45 %
+// at 0.6 s, 20 across) while the flow stays right: the band's volumes m/rho do not follow shifted
+// particles (docs/validation.md).
 TEST(Containers, CouetteCellTorquesBalanceAndMatchTheExactSolution) {
   const std::string text = R"(name = "couette_cell"
 [domain]
