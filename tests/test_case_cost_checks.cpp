@@ -74,6 +74,34 @@ TEST(CaseScales, BodyMassAndSpeed) {
                "velocity =", "the body speed is 1e+200 m/s");
 }
 
+// ---- speed of sound ------------------------------------------------------------------------
+
+TEST(CaseMach, SpeedsAtOrAboveTheSpeedOfSoundAreRefused) {
+  // kBase has c = 0.5 m/s. Each speed the case sets is named in the message; the key is fluid.c.
+  const std::string disc = one_body("shape = \"circle\"\ncenter = [0.01, 0.03]\nradius = 0.002\ndensity = 1000\n");
+  EXPECT_NO_THROW(load(with(disc, "density = 1000", "density = 1000\nvelocity = [0.3, -0.3]")));  // Mach 0.85
+  expect_error(with(disc, "density = 1000", "density = 1000\nvelocity = [0.3, -0.4]"), "fluid.c", "c = 0.5",
+               "is not above the speed 0.5 m/s that body[0].velocity sets (Mach 1)");
+  expect_error(with(disc, "density = 1000", "density = 1000\nomega = 300"), "fluid.c", "c = 0.5",
+               "that body[0].omega sets (Mach 1.2)");
+  const std::string moved = one_body("shape = \"circle\"\ncenter = [0.01, 0.03]\nradius = 0.002\nmotion = "
+                                     "\"prescribed\"\nschedule = [[0, 0, 0, 0], [0.5, 0, -2, 0]]\n");
+  expect_error(moved, "fluid.c", "c = 0.5", "that body[0].schedule sets (Mach 4)");
+  // A drum of radius 9 mm turning at 60 rad/s: its wall moves at 0.54 m/s.
+  const std::string drum = kBase + R"(
+[[wall]]
+shape = "arc"
+center = [0.01, 0.03]
+radius = 0.009
+start_angle = 0.0
+end_angle = 6.283185307179586
+omega = 60.0
+pivot = [0.01, 0.03]
+)";
+  expect_error(drum, "fluid.c", "c = 0.5", "that wall[0].omega sets (Mach 1.1)");
+  EXPECT_NO_THROW(load(with(drum, "omega = 60.0", "omega = 50.0")));  // Mach 0.9
+}
+
 // ---- probes ----------------------------------------------------------------------------------
 
 TEST(CaseProbes, EndsInsideTheDomain) {

@@ -144,6 +144,7 @@ normals = "analytic"
 
 [initial]
 flow = "taylor_green"
+amplitude = 1e-3
 
 [[wall]]
 from = [0, 0]

@@ -44,6 +44,7 @@ wall_pressure_sweeps = 2
 [initial]
 seed = 7
 flow = "taylor_green"
+amplitude = 1e-3
 
 [output]
 interval = 0.01

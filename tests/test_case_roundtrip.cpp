@@ -35,7 +35,7 @@ h_over_d0 = 3.1
 [fluid]
 rho0 = 998.2
 mu = 1.0016e-3
-c = 0.12345678901234567
+c = 1.2345678901234567
 p0 = 12.5
 gravity = [0, -9.81]
 gravity_in_fluid = true
@@ -353,7 +353,7 @@ TEST(CaseRoundTrip, RandomRealsKeepEveryBit) {
     a.h_over_d0 = uniform(1.5, 4);
     a.rho0 = uniform(1, 2e4);
     a.nu = std::exp(uniform(-20, 0));
-    a.c = uniform(1e-3, 1e3);
+    a.c = uniform(2, 1e3);  // above every speed set below (the load's Mach check)
     a.gravity = {uniform(-10, 10), uniform(-1e-200, 1e140)};  // derived scales stay below 1e150
     a.t_end = uniform(1e-9, 1e9);
     a.cfl = uniform(1e-3, 1);
@@ -361,7 +361,7 @@ TEST(CaseRoundTrip, RandomRealsKeepEveryBit) {
     a.probes[0].interval = uniform(1e-6, 1);
     a.bodies[0].angle = uniform(-10, 10);
     a.bodies[0].density = uniform(1, 2e4);
-    a.bodies[1].schedule[2].velocity = {uniform(-1, 1), uniform(-1e-300, 1e100)};
+    a.bodies[1].schedule[2].velocity = {uniform(-1, 1), uniform(-1e-300, 1)};
     a.bodies[1].vertices[4].x = uniform(0.0997, 0.09999);
     a.collision_stiffness = std::exp(uniform(0, 40));
     SCOPED_TRACE(i);

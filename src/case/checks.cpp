@@ -564,7 +564,7 @@ constexpr CrossCheck kChecks[] = {check_domain,           check_magnitudes,     
                                   check_schedules,        check_fixed_bodies,   check_body_sizes,
                                   check_bodies_in_domain, check_body_overlap,   check_walls_clear_of_bodies,
                                   check_initial_contacts, check_probes,         check_references,
-                                  check_time_steps};
+                                  check_mach,             check_time_steps};
 
 }  // namespace
 

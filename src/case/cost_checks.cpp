@@ -17,18 +17,59 @@ namespace particula {
 
 namespace {
 
-/// Largest speed at t = 0: walls, bodies (translation and rotation, schedules included) and
-/// the initial flow.
+/// A speed the case sets at t = 0, and the key that sets it.
+struct SetSpeed {
+  real speed;
+  std::string key;
+};
+
+/// Largest distance from `pivot` of the points of wall w (an arc sampled along its sweep).
+real wall_reach(const WallSpec& w, Vec2 pivot) {
+  real r = std::max(norm(w.from - pivot), norm(w.to - pivot));
+  if (w.shape == WallShape::Arc)
+    for (int k = 0; k <= 64; ++k) {
+      const real a = w.start_angle + (w.end_angle - w.start_angle) * k / 64.0;
+      r = std::max(r, norm(w.center + w.radius * Vec2{std::cos(a), std::sin(a)} - pivot));
+    }
+  return r;
+}
+
+/// A lower bound of a body's largest distance from its centre: its radius or largest semi-axis,
+/// or half the largest distance between two polygon vertices.
+real body_reach(const BodySpec& b) {
+  real reach = std::max({b.radius, b.semi_axes.x, b.semi_axes.y});
+  for (const Vec2& p : b.vertices)
+    for (const Vec2& q : b.vertices) reach = std::max(reach, 0.5 * norm(p - q));
+  return reach;
+}
+
+/// The speeds a case sets at t = 0: sliding and turning walls, bodies (translation and
+/// rotation, schedules included; each the larger of the two, a lower bound of the body's
+/// fastest point) and the initial flow.
+std::vector<SetSpeed> set_speeds(const Case& c) {
+  std::vector<SetSpeed> out;
+  for (std::size_t k = 0; k < c.walls.size(); ++k) {
+    const WallSpec& w = c.walls[k];
+    out.push_back({norm(w.velocity), case_detail::wall_key(k, "velocity")});
+    out.push_back({std::fabs(w.omega) * wall_reach(w, w.pivot), case_detail::wall_key(k, "omega")});
+  }
+  if (c.initial_flow == InitialFlow::TaylorGreen) out.push_back({c.initial_amplitude, "initial.amplitude"});
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    const BodySpec& b = c.bodies[k];
+    const real reach = body_reach(b);
+    const auto add = [&](Vec2 v, real omega, const char* leaf) {
+      out.push_back({std::max(norm(v), std::fabs(omega) * reach), fmt::format("body[{}].{}", k, leaf)});
+    };
+    add(b.velocity, b.omega, norm(b.velocity) >= std::fabs(b.omega) * reach ? "velocity" : "omega");
+    for (const MotionKnot& m : b.schedule) add(m.velocity, m.omega, "schedule");
+  }
+  return out;
+}
+
+/// Largest speed at t = 0 (set_speeds).
 real initial_speed(const Case& c) {
   real v = 0;
-  for (const WallSpec& w : c.walls) v = std::max(v, norm(w.velocity));
-  if (c.initial_flow == InitialFlow::TaylorGreen) v = std::max(v, c.initial_amplitude);
-  for (const BodySpec& b : c.bodies) {
-    real reach = std::max({b.radius, b.semi_axes.x, b.semi_axes.y});  // about the centre
-    for (const Vec2& p : b.vertices) reach = std::max(reach, norm(p - b.vertices.front()));
-    v = std::max(v, norm(b.velocity) + std::fabs(b.omega) * reach);
-    for (const MotionKnot& k : b.schedule) v = std::max(v, norm(k.velocity) + std::fabs(k.omega) * reach);
-  }
+  for (const SetSpeed& s : set_speeds(c)) v = std::max(v, s.speed);
   return v;
 }
 
@@ -233,6 +274,19 @@ void check_references(const Case& c, const LoadContext& ctx) {
 /// is cut short to end on an output time, so an interval of 1e-300 s would mean 1e300 steps), a
 /// bounded number of steps and of outputs. An interval between 1e-3 of the step and the step
 /// only makes the steps shorter (like time.dt_max).
+/// No speed the case sets may reach the speed of sound: the weakly compressible fluid cannot
+/// carry a flow at Mach 1 (its density would change by order one, and the Courant step shrinks
+/// with c + V), so such a case would only end in exit 3 after it started writing.
+void check_mach(const Case& c, const LoadContext& ctx) {
+  for (const SetSpeed& s : set_speeds(c))
+    if (s.speed >= c.c)
+      throw ctx.error("fluid.c",
+                      fmt::format("fluid.c = {:.3g} m/s is not above the speed {:.3g} m/s that {} sets (Mach {:.2g}): "
+                                  "a weakly compressible fluid must stay well below its speed of sound; choose "
+                                  "fluid.c at least 10 times the fastest speed of the flow ({:.3g} m/s or more here)",
+                                  c.c, s.speed, s.key, s.speed / c.c, 10 * s.speed));
+}
+
 void check_time_steps(const Case& c, const LoadContext& ctx) {
   const real stable = estimated_dt(c, false), dt = estimated_dt(c, true);
   const std::string about =

@@ -68,11 +68,13 @@ inline bool is_list_type(ValueType t) {
 void apply_overrides(toml::table& root, const std::vector<std::string>& overrides, LoadContext& ctx);
 
 /// Cost checks (cost_checks.cpp), run by run_cross_checks: derived scales within double range,
-/// probes inside the domain and of a sensible size, time steps and output counts bounded.
+/// probes inside the domain and of a sensible size, time steps and output counts bounded, no
+/// speed the case sets at or above the speed of sound.
 void check_magnitudes(const Case& c, const LoadContext& ctx);
 void check_probes(const Case& c, const LoadContext& ctx);
 void check_references(const Case& c, const LoadContext& ctx);
 void check_time_steps(const Case& c, const LoadContext& ctx);
+void check_mach(const Case& c, const LoadContext& ctx);
 
 /// "wall[2].from".
 std::string wall_key(std::size_t k, std::string_view leaf);

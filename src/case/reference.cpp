@@ -42,7 +42,10 @@ A case file is TOML. Rules that hold for every key:
   refused); the time step, estimated from d0, `fluid.c`, `fluid.nu` and the initial speeds, gives
   at most 1e9 steps to `time.end`; `time.dt_max` (when set) and every output interval
   (`output.*`, `probe[].interval`) are at least 1e-3 of that step, and each output stream makes
-  at most 1e6 outputs. The sections below list the checks of walls, probes and bodies.
+  at most 1e6 outputs; no speed the case sets at t = 0 (a sliding or turning wall, a body's
+  velocity, rotation or schedule, `initial.amplitude`) reaches `fluid.c` (the weakly compressible
+  fluid needs c at least 10 times the fastest speed of the flow). The sections below list the
+  checks of walls, probes and bodies.
 
 A minimal case:
 

@@ -53,7 +53,9 @@ std::vector<KeySpec> make_schema() {
                "Kinematic viscosity (give this or fluid.mu).", field(&Case::nu)),
       real_key("fluid.mu", "Pa s", one_of("viscosity"), gt(0),
                "Dynamic viscosity (give this or fluid.nu); stored as nu = mu / rho0.", dynamic_viscosity()),
-      real_key("fluid.c", "m/s", required(), gt(0), "Artificial speed of sound of the equation of state.",
+      real_key("fluid.c", "m/s", required(), gt(0),
+               "Artificial speed of sound of the equation of state: at least 10 times the fastest speed of the "
+               "flow (a case setting a speed at or above it is refused).",
                field(&Case::c)),
       real_key("fluid.p0", "Pa", def(0.0), ge(0), "Background pressure of the equation of state.",
                field(&Case::p0)),
