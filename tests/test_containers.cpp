@@ -231,12 +231,11 @@ TEST(Containers, SpinUpTorqueConvergesToTheExactSolution) {
 
 // A Couette cell (issue 18's torque balance against an exact solution): a cylinder R1 = 5 mm
 // turning at 1 rad/s inside a fixed circular wall R2 = 1 cm, 10 particles across the gap (CI
-// time; at 20 across: +0.009 % and +0.0025 %, docs/validation.md), at t = 0.3 s (12 viscous
-// times of the gap). Steady torque on the cylinder -4 pi mu omega R1^2 R2^2 /
-// (R2^2 - R1^2); the wall's torque about the centre must balance it. Particle shifting is off
-// here: with the default beta = 0.05 the reported torques drift (cylinder -0.35 %, imbalance 0.45 %
-// at 0.6 s, 20 across) while the flow stays right: the band's volumes m/rho do not follow shifted
-// particles (docs/validation.md).
+// time), default numerics, at t = 0.3 s (12 viscous times of the gap). Steady torque on the
+// cylinder -4 pi mu omega R1^2 R2^2 / (R2^2 - R1^2); the wall's torque about the centre must
+// balance it. With shifting on, the band must weigh its grad(phi) terms by the particles' Voronoi
+// cells: with their volumes m/rho the torques drifted (-0.35 % and an imbalance of 0.45 % at 0.6 s,
+// 20 across; docs/validation.md).
 TEST(Containers, CouetteCellTorquesBalanceAndMatchTheExactSolution) {
   const std::string text = R"(name = "couette_cell"
 [domain]
@@ -247,8 +246,6 @@ d0 = 5e-4
 [fluid]
 nu = 1.0e-4
 c = 0.1
-[numerics]
-shifting_beta = 0.0
 [time]
 end = 0.3
 [output]

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <string>
 
 #include "particula/case/case.hpp"
@@ -33,6 +34,51 @@ TEST(MomentumLoads, BandWeightIsSingularOnTheSurfaceAndVanishesSmoothlyAtTheReac
     band_weight(s, w, dw);
     EXPECT_NEAR(dw, (wp - wm) / (2 * e), 1e-6 * std::fabs(dw) + 1e-8) << "s = " << s;
   }
+}
+
+TEST(MomentumLoads, VoronoiCellsTileThePlane) {
+  const real h = 2.6, d0 = 1.0;
+  // neighbours within h of a lattice point: square lattice -> d0^2; hexagonal of spacing a ->
+  // sqrt(3)/2 a^2; sheared square lattice (x += 0.3 y) -> still d0^2 (area preserved)
+  const auto cell = [&](auto point) {
+    std::vector<Vec2> d;
+    for (int i = -4; i <= 4; ++i)
+      for (int j = -4; j <= 4; ++j) {
+        const Vec2 p = point(i, j);
+        if ((i != 0 || j != 0) && norm(p) < h) d.push_back(p);
+      }
+    return voronoi_cell_area(d.data(), static_cast<int>(d.size()), h);
+  };
+  EXPECT_NEAR(cell([&](int i, int j) { return Vec2{i * d0, j * d0}; }), 1.0, 1e-14);
+  EXPECT_NEAR(cell([&](int i, int j) { return Vec2{(i + 0.5 * j) * 1.1, j * 1.1 * std::sqrt(3.0) / 2}; }),
+              std::sqrt(3.0) / 2 * 1.21, 1e-14);
+  EXPECT_NEAR(cell([&](int i, int j) { return Vec2{i + 0.3 * j, 1.0 * j}; }), 1.0, 1e-14);
+  // a perturbed lattice: the cells of the points of a patch add up to the patch's area to within
+  // the cells along its edge, and each cell is positive
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<real> u(-0.25, 0.25);
+  std::vector<Vec2> pts;
+  for (int j = 0; j < 24; ++j)
+    for (int i = 0; i < 24; ++i) pts.push_back({i + u(rng), j + u(rng)});
+  real total = 0;
+  int inner = 0;
+  for (const Vec2& x : pts) {
+    if (x.x < 6 || x.x > 18 || x.y < 6 || x.y > 18) continue;
+    std::vector<Vec2> d;
+    for (const Vec2& y : pts)
+      if (norm(y - x) < h && norm(y - x) > 0) d.push_back(y - x);
+    const real a = voronoi_cell_area(d.data(), static_cast<int>(d.size()), h);
+    EXPECT_GT(a, 0.4);
+    total += a;
+    ++inner;
+  }
+  EXPECT_NEAR(total / inner, 1.0, 0.03);
+  // a particle at the edge of the fluid (no neighbour on one side): no closed cell
+  std::vector<Vec2> half;
+  for (int i = -2; i <= 2; ++i)
+    for (int j = 0; j <= 2; ++j)
+      if (i != 0 || j != 0) half.push_back({1.0 * i, 1.0 * j});
+  EXPECT_EQ(voronoi_cell_area(half.data(), static_cast<int>(half.size()), h), 0.0);
 }
 
 TEST(MomentumLoads, PartitionIsOneOnItsSolidZeroOnTheOthersAndHasTheRightGradient) {

@@ -130,6 +130,23 @@ int Solver::near_solids(Vec2 x, real reach, NearSolid* out, int max) const {
   return count;
 }
 
+real Solver::band_cell_area(std::size_t i, const std::vector<Vec2>& x) const {
+  const std::size_t nb = P_.n_boundary;
+  Vec2 d[kVoronoiMaxVertices - 4];
+  int count = 0;
+  bool closed_by_fluid = true;
+  visit_neighbors(band_grid_.geometry(), prm_.h * prm_.h, x.data(), band_grid_.sorted().data(),
+                  band_grid_.cell_start().data(), band_grid_.cell_of()[i], static_cast<std::uint32_t>(i),
+                  [&](std::uint32_t j, real) {
+                    if (j < nb || count == kVoronoiMaxVertices - 4) {
+                      closed_by_fluid = false;
+                      return;
+                    }
+                    d[count++] = domain_.separation(x[j], x[i]);
+                  });
+  return closed_by_fluid ? voronoi_cell_area(d, count, prm_.h) : 0;
+}
+
 void Solver::build_load_band() {
   const real reach = kLoadBandReach * prm_.h;
   const std::vector<Vec2>& x = dev_ ? band_x_ : P_.x;
@@ -137,6 +154,8 @@ void Solver::build_load_band() {
   const std::size_t nb = P_.n_boundary, nf = x.size() - nb;
   constexpr int kMaxNear = 16;
   bin_bodies_for_band(reach);
+  band_grid_.setup(domain_, prm_.h);  // a few numbers: cheaper than checking
+  band_grid_.bin(x);
   band_count_.assign(nf + 1, 0);
   // Pass 1: how many solids each fluid particle is near; pass 2: phi and grad phi for each.
 #pragma omp parallel for schedule(static)
@@ -150,11 +169,13 @@ void Solver::build_load_band() {
   for (std::size_t f = 0; f < nf; ++f) {
     NearSolid near[kMaxNear];
     const int count = near_solids(x[nb + f], reach, near, kMaxNear);
+    const real area = count > 0 ? band_cell_area(nb + f, x) : 0;
     for (int k = 0; k < count; ++k) {
       BandEntry& e = band_unsorted_[band_count_[f] + static_cast<std::size_t>(k)];
       e.particle = static_cast<std::uint32_t>(nb + f);
       e.group = near[k].group;
       band_partition(near, count, k, reach, e.phi, e.grad_phi);
+      e.area = area;
     }
   }
   // Counting sort by group (stable: particle order within a group), so that each group's sum

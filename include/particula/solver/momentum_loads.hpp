@@ -67,14 +67,65 @@ struct NearSolid {
   Vec2 n;
 };
 
-/// One fluid particle in the band of one solid: phi_B(x_i) and grad phi_B(x_i), fixed for a
+/// One fluid particle in the band of one solid: phi_B(x_i) and grad phi_B(x_i), and the area
+/// that weighs its grad(phi) terms (voronoi_cell_area; 0: its volume m_i / rho_i), fixed for a
 /// step (positions are frozen during the stages).
 struct BandEntry {
   std::uint32_t particle = 0;
   std::int32_t group = -1;
   real phi = 0;
   Vec2 grad_phi;
+  real area = 0;
 };
+
+/// Largest number of vertices of a cell in voronoi_cell_area (a square clipped by at most
+/// kVoronoiMaxVertices - 4 bisectors; a cell with more is left to the volume m / rho).
+constexpr int kVoronoiMaxVertices = 48;
+
+/// Area of the Voronoi cell of a particle among neighbours at separations d[k] = x_k - x_i
+/// (k < count, all within `reach`): the square of half-width `reach` round it, clipped by the
+/// perpendicular bisector of each neighbour (Sutherland-Hodgman). Returns 0 when the cell is not
+/// closed within reach / 2 of the particle (a void or an edge of the fluid beside it) or has too
+/// many vertices: the caller then uses the particle's volume.
+///
+/// Why (docs/method-notes.md, "Forces on solids"): the band's grad(phi) terms are an area
+/// integral, and its quadrature weight must be the area the particle stands for now. Its volume
+/// m / rho follows the fluid's motion through the continuity equation but not particle
+/// shifting, which moves a particle relative to the fluid without changing its density; the
+/// Voronoi cells of the particles tile the plane whatever their arrangement.
+PARTICULA_HD real voronoi_cell_area(const Vec2* d, int count, real reach) {
+  Vec2 buf[2][kVoronoiMaxVertices];
+  int n = 4, cur = 0;
+  buf[0][0] = {-reach, -reach};
+  buf[0][1] = {reach, -reach};
+  buf[0][2] = {reach, reach};
+  buf[0][3] = {-reach, reach};
+  for (int k = 0; k < count; ++k) {
+    // keep the half-plane x . d_k <= |d_k|^2 / 2 (the side of the particle)
+    const Vec2 dk = d[k];
+    const real half = 0.5 * dot(dk, dk);
+    const Vec2* in = buf[cur];
+    Vec2* out = buf[1 - cur];
+    int m = 0;
+    for (int a = 0; a < n; ++a) {
+      const Vec2 P = in[a], Q = in[a + 1 < n ? a + 1 : 0];
+      const real fp = dot(P, dk) - half, fq = dot(Q, dk) - half;
+      if (m + 2 > kVoronoiMaxVertices) return 0;
+      if (fp <= 0) out[m++] = P;
+      if ((fp < 0 && fq > 0) || (fp > 0 && fq < 0)) out[m++] = P + (fp / (fp - fq)) * (Q - P);
+    }
+    n = m;
+    cur = 1 - cur;
+    if (n < 3) return 0;
+  }
+  const Vec2* poly = buf[cur];
+  real area = 0, r2 = 0;
+  for (int a = 0; a < n; ++a) {
+    area += cross(poly[a], poly[a + 1 < n ? a + 1 : 0]);
+    r2 = r2 > dot(poly[a], poly[a]) ? r2 : dot(poly[a], poly[a]);
+  }
+  return r2 <= 0.25 * reach * reach ? 0.5 * area : 0;
+}
 
 /// phi and grad phi of solid k among the `count` solids near a particle (band reach `reach`, m).
 PARTICULA_HD void band_partition(const NearSolid* near, int count, int k, real reach, real& phi, Vec2& grad_phi) {
@@ -98,6 +149,7 @@ PARTICULA_HD void band_partition(const NearSolid* near, int count, int k, real r
 /// What the load sum reads of fluid particle i in the current stage.
 struct LoadSample {
   real m = 0, rho = 0;
+  real area = 0;    // weight of the grad(phi) terms (BandEntry::area; 0: m / rho)
   real p_dyn = 0;   // P_i - P_h(x_i): the pressure less the smooth field taken out exactly
   Mat2 grad_v;      // L_ab = d_a V_b (renormalized, P.7)
   Vec2 rate_p;      // -<grad P>_i / rho_i: the pressure share of the particle's a - f
@@ -106,18 +158,21 @@ struct LoadSample {
   Vec2 lever;       // r_i = x_i - X_B (minimum image)
 };
 
-/// Load of fluid particle i on solid B, -[w_i grad(phi) . sigma_dyn + phi (m_i (a_i - f) +
-/// w_i grad P_h)] with sigma_dyn = -P_dyn I + mu (L + L^T), split into the pressure part
-/// (P_dyn, <grad P>, grad P_h) and the viscous part (tau, <lap V>), and its torque r_i x (both).
+/// Load of fluid particle i on solid B, -[A_i grad(phi) . sigma_dyn + phi (m_i (a_i - f) +
+/// w_i grad P_h)] with sigma_dyn = -P_dyn I + mu (L + L^T), A_i the particle's area (its Voronoi
+/// cell, or w_i = m_i / rho_i), split into the pressure part (P_dyn, <grad P>, grad P_h) and the
+/// viscous part (tau, <lap V>), and its torque r_i x (both). The phi terms keep the volume
+/// w_i: they are the particle's own momentum rate, m_i (a_i - f) = w_i (-<grad P>_i + ...).
 PARTICULA_HD void band_load(const LoadSample& s, real phi, Vec2 grad_phi, real mu, Vec2& fp, Vec2& fv, real& torque) {
   const real w = s.m / s.rho;
+  const real A = s.area > 0 ? s.area : w;
   // tau = mu (L + L^T - tr(L) I): symmetric, and its divergence is mu lap V, the scheme's own
   // viscous term (mu (L + L^T) differs from it by mu grad(div V), which the weakly compressible
   // flow does not make zero: the Rhie-Chow term balances a steady div V)
   const real div_v = trace(s.grad_v);
   const Mat2 tau = mu * (s.grad_v + transpose(s.grad_v) - Mat2{div_v, 0, 0, div_v});
-  fp = (w * s.p_dyn) * grad_phi - phi * (s.m * s.rate_p + w * s.grad_p_h);
-  fv = -w * (grad_phi * tau) - (phi * s.m) * s.rate_v;
+  fp = (A * s.p_dyn) * grad_phi - phi * (s.m * s.rate_p + w * s.grad_p_h);
+  fv = -A * (grad_phi * tau) - (phi * s.m) * s.rate_v;
   torque = cross(s.lever, fp + fv);
 }
 
@@ -165,6 +220,7 @@ PARTICULA_HD void band_entry_load(const LoadArrays& a, const BandEntry& e, Vec2&
   LoadSample s;
   s.m = a.m[i];
   s.rho = a.rho[i];
+  s.area = e.area;
   s.p_dyn = a.p[i] - (a.p0 - a.rho0 * a.c2 + level);
   s.grad_v = a.grad_v[i];
   s.rate_p = -a.grad_p_over_rho[i];
