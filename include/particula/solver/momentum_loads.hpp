@@ -83,10 +83,11 @@ struct BandEntry {
 constexpr int kVoronoiMaxVertices = 48;
 
 /// Area of the Voronoi cell of a particle among neighbours at separations d[k] = x_k - x_i
-/// (k < count, all within `reach`): the square of half-width `reach` round it, clipped by the
-/// perpendicular bisector of each neighbour (Sutherland-Hodgman). Returns 0 when the cell is not
-/// closed within reach / 2 of the particle (a void or an edge of the fluid beside it) or has too
-/// many vertices: the caller then uses the particle's volume.
+/// (k < count): the square of half-width reach / 2 round it, clipped by the perpendicular
+/// bisector of each neighbour (Sutherland-Hodgman). Returns 0 when the cell does not close
+/// within reach / 2 of the particle (a void or an edge of the fluid beside it) or has too many
+/// vertices: the caller then uses the particle's volume. A neighbour farther than twice the
+/// cell's farthest vertex cannot cut it and is skipped.
 ///
 /// Why (docs/method-notes.md, "Forces on solids"): the band's grad(phi) terms are an area
 /// integral, and its quadrature weight must be the area the particle stands for now. Its volume
@@ -95,15 +96,18 @@ constexpr int kVoronoiMaxVertices = 48;
 /// Voronoi cells of the particles tile the plane whatever their arrangement.
 PARTICULA_HD real voronoi_cell_area(const Vec2* d, int count, real reach) {
   Vec2 buf[2][kVoronoiMaxVertices];
+  const real a0 = 0.5 * reach;
   int n = 4, cur = 0;
-  buf[0][0] = {-reach, -reach};
-  buf[0][1] = {reach, -reach};
-  buf[0][2] = {reach, reach};
-  buf[0][3] = {-reach, reach};
+  buf[0][0] = {-a0, -a0};
+  buf[0][1] = {a0, -a0};
+  buf[0][2] = {a0, a0};
+  buf[0][3] = {-a0, a0};
+  real r2 = 2 * a0 * a0;  // the polygon's largest |x|^2
   for (int k = 0; k < count; ++k) {
     // keep the half-plane x . d_k <= |d_k|^2 / 2 (the side of the particle)
     const Vec2 dk = d[k];
     const real half = 0.5 * dot(dk, dk);
+    if (0.5 * half >= r2) continue;  // |d_k| / 2 >= the farthest vertex: no cut
     const Vec2* in = buf[cur];
     Vec2* out = buf[1 - cur];
     int m = 0;
@@ -117,14 +121,13 @@ PARTICULA_HD real voronoi_cell_area(const Vec2* d, int count, real reach) {
     n = m;
     cur = 1 - cur;
     if (n < 3) return 0;
+    r2 = 0;
+    for (int a = 0; a < n; ++a) r2 = r2 > dot(out[a], out[a]) ? r2 : dot(out[a], out[a]);
   }
   const Vec2* poly = buf[cur];
-  real area = 0, r2 = 0;
-  for (int a = 0; a < n; ++a) {
-    area += cross(poly[a], poly[a + 1 < n ? a + 1 : 0]);
-    r2 = r2 > dot(poly[a], poly[a]) ? r2 : dot(poly[a], poly[a]);
-  }
-  return r2 <= 0.25 * reach * reach ? 0.5 * area : 0;
+  real area = 0;
+  for (int a = 0; a < n; ++a) area += cross(poly[a], poly[a + 1 < n ? a + 1 : 0]);
+  return r2 < a0 * a0 ? 0.5 * area : 0;
 }
 
 /// phi and grad phi of solid k among the `count` solids near a particle (band reach `reach`, m).
