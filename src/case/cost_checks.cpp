@@ -35,11 +35,17 @@ real wall_reach(const WallSpec& w, Vec2 pivot) {
 }
 
 /// A lower bound of a body's largest distance from its centre: its radius or largest semi-axis,
-/// or half the largest distance between two polygon vertices.
+/// or half the larger side of a polygon's bounding box.
 real body_reach(const BodySpec& b) {
   real reach = std::max({b.radius, b.semi_axes.x, b.semi_axes.y});
-  for (const Vec2& p : b.vertices)
-    for (const Vec2& q : b.vertices) reach = std::max(reach, 0.5 * norm(p - q));
+  if (!b.vertices.empty()) {
+    Vec2 lo = b.vertices.front(), hi = lo;
+    for (const Vec2& p : b.vertices) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    }
+    reach = std::max({reach, 0.5 * (hi.x - lo.x), 0.5 * (hi.y - lo.y)});
+  }
   return reach;
 }
 
