@@ -257,6 +257,12 @@ output.interval = 0.1
 from = [0, 0]
 to = [1, 0]
 [[wall]]
+from = [0.8, 1]
+to = [0.7, 1]
+[[wall]]
+from = [0.55, 1]
+to = [0.4, 1]
+[[wall]]
 shape = "arc"
 center = [0.6, 0.85]
 radius = 0.08
@@ -264,6 +270,18 @@ start_angle = 0
 end_angle = -6.283185307179586
 omega = 1
 pivot = [0.6, 0.85]
+[[inlet]]
+from = [1, 1]
+to = [0.8, 1]
+velocity = 0.01
+[[inlet]]
+from = [0.7, 1]
+to = [0.55, 1]
+profile = "table"
+table = [[0, 0], [0.15, 0.01]]
+[[outlet]]
+from = [0.4, 1]
+to = [0, 1]
 [[probe]]
 name = "p"
 from = [0, 0]

@@ -121,6 +121,8 @@ TEST(CaseSchema, DefaultsAgreeWithCaseHpp) {
   fresh.walls.resize(1);
   fresh.probes.resize(1);
   fresh.bodies.resize(1);
+  fresh.inlets.resize(1);
+  fresh.outlets.resize(1);
   fresh.bodies[0].motion = BodyMotion::Prescribed;  // so that body[].schedule is used
   for (const KeySpec& s : case_schema()) {
     if (s.need != Need::Default || s.default_for) continue;

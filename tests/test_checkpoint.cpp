@@ -117,6 +117,8 @@ Checkpoint sample() {
   b.count = 2;
   b.torque = -0.0;
   c.groups = {a, b};
+  P.next_id = 9;  // ids 0..6 in use, 7 and 8 were removed (open boundaries)
+  c.open_flux = {{0.5, 0.25, 3, 2}, {1e-300, 0, 0, 7}};
   return c;
 }
 
@@ -126,6 +128,7 @@ std::string field_bytes(const Checkpoint& c) {
   particles_fields(w, c.particles);
   for (const auto& g : c.groups) rigid_group_fields(w, g);
   solver_counters_fields(w, c.counters);
+  for (const auto& f : c.open_flux) open_flux_fields(w, f);
   return w.take();
 }
 
@@ -163,6 +166,10 @@ TEST(CheckpointFields, ListsVisitEveryMemberOnce) {
   AddressArchive as;
   solver_counters_fields(as, s);
   expect_covers(as, s, kSolverCountersFields);
+  OpenFlux f;
+  AddressArchive af;
+  open_flux_fields(af, f);
+  expect_covers(af, f, kOpenFluxFields);
 }
 
 TEST(Checkpoint, RoundTripKeepsEveryFieldBitwise) {
@@ -190,6 +197,10 @@ TEST(Checkpoint, RoundTripKeepsEveryFieldBitwise) {
   EXPECT_FALSE(r.groups[1].is_wall);
   EXPECT_EQ(r.groups[0].pos0.y, 11);
   EXPECT_TRUE(std::signbit(r.groups[1].torque));
+  EXPECT_EQ(r.particles.next_id, 9);
+  ASSERT_EQ(r.open_flux.size(), 2u);
+  EXPECT_EQ(r.open_flux[0].backflow_mass, 0.25);
+  EXPECT_EQ(r.open_flux[1].deleted, 7);
   EXPECT_EQ(field_bytes(r), field_bytes(c));
   EXPECT_EQ(encode_checkpoint(r), encode_checkpoint(c));
 }

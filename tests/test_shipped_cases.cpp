@@ -59,6 +59,10 @@ const Coarse kPaper[] = {{"falling_cylinder", "2.5e-4"},
 const Coarse kContainers[] = {
     {"incline_wall", "2e-4"}, {"hopper", "2e-4"}, {"sunk_block", "2e-4"}, {"ring_container", "5e-4"}};
 
+/// The open-boundary cases (issue 17): poiseuille_open at 10 across (about a minute to twice its
+/// end time), dfg_2d1 at D/10 (several minutes): too long for CI.
+const Coarse kOpen[] = {{"poiseuille_open", "1e-4"}, {"dfg_2d1", "0.01"}};
+
 /// gtest names the parameter by its case.
 void PrintTo(const Coarse& k, std::ostream* os) { *os << k.name << " at d0 = " << k.d0; }
 
@@ -97,12 +101,15 @@ INSTANTIATE_TEST_SUITE_P(DISABLED_Paper, TwiceTheEndTime, ::testing::ValuesIn(kP
                          [](const auto& info) { return std::string(info.param.name); });
 INSTANTIATE_TEST_SUITE_P(DISABLED_Containers, TwiceTheEndTime, ::testing::ValuesIn(kContainers),
                          [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(DISABLED_Open, TwiceTheEndTime, ::testing::ValuesIn(kOpen),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 TEST(TwiceTheEndTimeList, EveryShippedCaseIsListed) {
   std::set<std::string> listed;
   for (const Coarse& k : kAnalytic) listed.insert(k.name);
   for (const Coarse& k : kPaper) listed.insert(k.name);
   for (const Coarse& k : kContainers) listed.insert(k.name);
+  for (const Coarse& k : kOpen) listed.insert(k.name);
   for (const auto& e : fs::directory_iterator(kCases))
     if (e.path().extension() == ".toml") {
       EXPECT_TRUE(listed.contains(e.path().stem().string()))

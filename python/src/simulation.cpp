@@ -89,6 +89,7 @@ std::unique_ptr<Simulation> from_checkpoint(const fs::path& file, const std::vec
   sim->solver = std::make_unique<Solver>(prm, domain, std::move(k.particles), std::move(k.groups),
                                          SolverStart::Restart, k.time, k.step);
   sim->solver->set_counters(k.counters);
+  sim->solver->set_open_flux(k.open_flux);
   return sim;
 }
 
@@ -100,7 +101,7 @@ void write_simulation_checkpoint(const Simulation& sim, const fs::path& file) {
   const std::int64_t step = s.step_count();
   const std::vector<OutputMark> no_marks;
   write_checkpoint(
-      file, CheckpointView{toml, sim.case_hash, t, step, s.counters(), no_marks, s.particles(), s.groups()});
+      file, CheckpointView{toml, sim.case_hash, t, step, s.counters(), no_marks, s.particles(), s.groups(), s.open_flux()});
 }
 
 /// One step of at most max_dt (0: the stable step), or with `land_at` one that ends exactly at that

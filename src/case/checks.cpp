@@ -5,7 +5,8 @@
 // periodic axis, clear of bodies.
 // Keys used by their shape or motion only; walls against bodies; no free body starting in
 // contact. Bodies on their own and against each other: body_checks.cpp; curved and turning
-// walls: wall_checks.cpp; scales, probes and time steps: cost_checks.cpp.
+// walls: wall_checks.cpp; scales, probes and time steps: cost_checks.cpp; inlets and outlets:
+// open_checks.cpp.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -560,10 +561,11 @@ constexpr CrossCheck kChecks[] = {check_domain,           check_magnitudes,     
                                   check_walls_off_periodic_edges, check_wall_orientation, check_wall_overlap,
                                   check_wall_gaps, check_wall_joints, check_wall_chains, check_sliding_walls,
                                   check_arc_overlap,      check_turning_walls,  check_region_closed, check_spin_up,
-                                  check_unused_keys,      check_polygons,       check_density,
-                                  check_schedules,        check_fixed_bodies,   check_body_sizes,
-                                  check_bodies_in_domain, check_body_overlap,   check_walls_clear_of_bodies,
-                                  check_initial_contacts, check_probes,         check_references,
+                                  check_unused_keys,      check_open_boundaries, check_polygons,
+                                  check_density,          check_schedules,      check_fixed_bodies,
+                                  check_body_sizes,       check_bodies_in_domain, check_body_overlap,
+                                  check_walls_clear_of_bodies, check_initial_contacts, check_open_bodies,
+                                  check_probes,           check_references,
                                   check_mach,             check_time_steps};
 
 }  // namespace

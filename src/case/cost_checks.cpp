@@ -49,9 +49,18 @@ real body_reach(const BodySpec& b) {
   return reach;
 }
 
-/// The speeds a case sets at t = 0: sliding and turning walls, bodies (translation and
-/// rotation, schedules included; each the larger of the two, a lower bound of the body's
-/// fastest point) and the initial flow.
+/// The largest speed an inlet sets (its uniform speed or parabola peak, or the largest u of its
+/// table), ramp left out.
+real inlet_speed(const OpenSpec& o) {
+  if (o.profile != InletProfile::Table) return o.velocity;
+  real u = 0;
+  for (const Vec2& row : o.table) u = std::max(u, row.y);
+  return u;
+}
+
+/// The speeds a case sets: sliding and turning walls, bodies (translation and rotation,
+/// schedules included; each the larger of the two, a lower bound of the body's fastest point),
+/// the initial flow, and the inflow of inlets (at full speed, after any ramp).
 std::vector<SetSpeed> set_speeds(const Case& c) {
   std::vector<SetSpeed> out;
   for (std::size_t k = 0; k < c.walls.size(); ++k) {
@@ -68,6 +77,10 @@ std::vector<SetSpeed> set_speeds(const Case& c) {
     };
     add(b.velocity, b.omega, norm(b.velocity) >= std::fabs(b.omega) * reach ? "velocity" : "omega");
     for (const MotionKnot& m : b.schedule) add(m.velocity, m.omega, "schedule");
+  }
+  for (std::size_t k = 0; k < c.inlets.size(); ++k) {
+    const bool table = c.inlets[k].profile == InletProfile::Table;
+    out.push_back({inlet_speed(c.inlets[k]), fmt::format("inlet[{}].{}", k, table ? "table" : "velocity")});
   }
   return out;
 }
@@ -197,6 +210,15 @@ void check_magnitudes(const Case& c, const LoadContext& ctx) {
                       free});
     scales.push_back({key + "density", "the body's weight (mass times |g|)", "N/m", mass * length(c.gravity), false});
   }
+  for (std::size_t k = 0; k < c.inlets.size(); ++k) {
+    const bool table = c.inlets[k].profile == InletProfile::Table;
+    scales.push_back({fmt::format("inlet[{}].{}", k, table ? "table" : "velocity"), "the inflow speed", "m/s",
+                      inlet_speed(c.inlets[k]), false});
+    scales.push_back({fmt::format("inlet[{}].ramp_time", k), "the ramp time", "s", c.inlets[k].ramp_time, false});
+  }
+  for (std::size_t k = 0; k < c.outlets.size(); ++k)
+    scales.push_back({fmt::format("outlet[{}].pressure", k), "the outlet pressure", "Pa", c.outlets[k].pressure,
+                      false});
   // Last, as it depends on the speeds above.
   scales.push_back({"fluid.c", "the time step (about cfl d0 / (c + V))", "s", estimated_dt(c, false), true});
   for (const Scale& s : scales) {

@@ -102,6 +102,15 @@ void check_body_sizes(const Case& c, const LoadContext& ctx);
 void check_bodies_in_domain(const Case& c, const LoadContext& ctx);
 void check_body_overlap(const Case& c, const LoadContext& ctx);
 
+/// Checks of open boundaries (open_checks.cpp), run by run_cross_checks: check_open_boundaries
+/// after the walls (names unique among inlets and outlets, layers, each segment on a bounded
+/// domain edge with the fluid inside, at least 4 d0 wide, ending at corners or wall ends, no wall
+/// along it, no overlap, no moving wall ending on it, inlet tables, an outlet for every inlet
+/// and far enough from it, numerics.boundary single_layer); check_open_bodies after the bodies
+/// (no body within reach of an open segment at t = 0).
+void check_open_boundaries(const Case& c, const LoadContext& ctx);
+void check_open_bodies(const Case& c, const LoadContext& ctx);
+
 /// Consistency checks between keys (domain, walls, periodic width, bodies, ...); throw CaseError.
 void run_cross_checks(const Case& c, const LoadContext& ctx);
 

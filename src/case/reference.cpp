@@ -25,8 +25,8 @@ A case file is TOML. Rules that hold for every key:
 - Ranges: `[a, b]` includes its ends, `(a, b)` excludes them; the range of a `vec2` applies to
   each component.
 - Some members of `[[body]]` are used only by some shapes or motions (Default column: "required
-  for shape circle, half_disc", "only for motion prescribed"); giving one for another shape or
-  motion is an error.
+  for shape circle, half_disc", "only for motion prescribed"), and some of `[[inlet]]` only by
+  some profiles; giving one for another shape, motion or profile is an error.
 - On the command line, `--set key=value` overrides any key before the checks; the value is
   TOML (`--set fluid.gravity=[0,-9.81]`), and strings and choices also take a bare word
   (`--set numerics.laplacian=morris`). Members of arrays of tables are addressed by index from
@@ -35,17 +35,18 @@ A case file is TOML. Rules that hold for every key:
 - The run directory gets `case.toml`, the fully resolved case (every key, defaults filled in;
   viscosity written as `fluid.nu`).
 - Beyond each key's range, the whole case is checked before anything is written (exit code 2,
-  with the file, line and key): names (case, walls, probes, bodies) have at most 64 characters;
-  every derived scale (d0, the domain, c, rho0 c^2, the particle mass rho0 d0^2, 1/h^3, the time
-  step, wall forces, accelerations, body masses and speeds) lies within [1e-150, 1e150], so that
-  squares and products stay finite non-zero doubles (a case with every number times 1e150 is
-  refused); the time step, estimated from d0, `fluid.c`, `fluid.nu` and the initial speeds, gives
-  at most 1e9 steps to `time.end`; `time.dt_max` (when set) and every output interval
-  (`output.*`, `probe[].interval`) are at least 1e-3 of that step, and each output stream makes
-  at most 1e6 outputs; no speed the case sets at t = 0 (a sliding or turning wall, a body's
-  velocity, rotation or schedule, `initial.amplitude`) reaches `fluid.c` (the weakly compressible
-  fluid needs c at least 10 times the fastest speed of the flow). The sections below list the
-  checks of walls, probes and bodies.
+  with the file, line and key): names (case, walls, probes, bodies, inlets, outlets) have at
+  most 64 characters; every derived scale (d0, the domain, c, rho0 c^2, the particle mass rho0
+  d0^2, 1/h^3, the time step, wall forces, accelerations, body masses and speeds) lies within
+  [1e-150, 1e150], so that squares and products stay finite non-zero doubles (a case with
+  every number times 1e150 is refused); the time step, estimated from d0, `fluid.c`,
+  `fluid.nu` and the initial speeds, gives at most 1e9 steps to `time.end`; `time.dt_max`
+  (when set) and every output interval (`output.*`, `probe[].interval`) are at least 1e-3 of
+  that step, and each output stream makes at most 1e6 outputs; no speed the case sets at t = 0
+  (a sliding or turning wall, a body's velocity, rotation or schedule, `initial.amplitude`, an
+  inlet's full speed) reaches `fluid.c` (the weakly compressible fluid needs c at least 10 times
+  the fastest speed of the flow). The sections below list the checks of walls, probes, bodies,
+  inlets and outlets.
 
 A minimal case:
 

@@ -24,7 +24,10 @@ std::vector<KeySpec> make_schema() {
   const auto W = &Case::walls;
   const auto P = &Case::probes;
   const auto B = &Case::bodies;
+  const auto I = &Case::inlets;
+  const auto O = &Case::outlets;
   const std::string shape = "body[].shape", motion = "body[].motion", wall_shape = "wall[].shape";
+  const std::string inlet_profile = "inlet[].profile";
   return {
       // top level
       string_key("name", required(), "Name of the case; the default run directory is `runs/<name>`.",
@@ -329,6 +332,55 @@ std::vector<KeySpec> make_schema() {
       real_key("body[].reference_length", "m", def(0.0, "0 (analysis.reference_length)"), ge(0),
                "This body's reference length L for coefficients.csv (e.g. its diameter).",
                member(B, &BodySpec::reference_length)),
+      // [[inlet]]
+      string_key("inlet[].name", per_index(inlet_name, "inlet<k> (k = index from 0)"),
+                 "Name of the inlet in output and messages, unique among all inlets and outlets.",
+                 member(I, &OpenSpec::name), /*name=*/true, /*unique=*/true),
+      vec2_key("inlet[].from", "m", required(),
+               "Start of the inlet segment, on an edge of the domain; the fluid lies on the left walking from "
+               "`from` to `to`, as for walls.",
+               member(I, &OpenSpec::from)),
+      vec2_key("inlet[].to", "m", required(), "End of the inlet segment.", member(I, &OpenSpec::to)),
+      choice_member("inlet[].profile", {"uniform", "parabolic", "table"}, def(std::string{"uniform"}),
+                    "Inflow speed across the segment: the same everywhere (uniform), a parabola that is 0 at both "
+                    "ends and `velocity` in the middle (parabolic), or given by `table`.",
+                    I, &OpenSpec::profile),
+      used_when(real_key("inlet[].velocity", "m/s", required(), gt(0),
+                         "The uniform speed, or the parabola's peak, of the flow into the domain along the "
+                         "segment's inward normal.",
+                         member(I, &OpenSpec::velocity)),
+                inlet_profile, {"uniform", "parabolic"}),
+      used_when(vec2_list_key("inlet[].table", "m, m/s", required(), 2,
+                              "Inflow speed across the segment as rows [[s, u], ...]: s the distance from `from` "
+                              "along the segment (strictly increasing, within [0, width]), u the speed into the "
+                              "domain (>= 0, at least one > 0), linear in between and held at the first and last rows beyond them.",
+                              member(I, &OpenSpec::table)),
+                inlet_profile, {"table"}),
+      real_key("inlet[].ramp_time", "s", def(0.0, "0 (no ramp)"), ge(0),
+               "Time T over which the inflow starts: the speed is multiplied by (1 - cos(pi t / T)) / 2 until T, "
+               "which avoids the pressure wave of an impulsive start.",
+               member(I, &OpenSpec::ramp_time)),
+      int_key("inlet[].layers", def(std::int64_t{0}, "0 (= ceil(h / d0) + 1)"), closed(0, 20),
+              "Rows of buffer particles outside the domain behind the segment, d0 apart: 0 (the default, "
+              "ceil(h / d0) + 1, so that the buffer is deeper than h) or 2 to 20.",
+              member(I, &OpenSpec::layers)),
+      // [[outlet]]
+      string_key("outlet[].name", per_index(outlet_name, "outlet<k> (k = index from 0)"),
+                 "Name of the outlet in output and messages, unique among all inlets and outlets.",
+                 member(O, &OpenSpec::name), /*name=*/true, /*unique=*/true),
+      vec2_key("outlet[].from", "m", required(),
+               "Start of the outlet segment, on an edge of the domain; the fluid lies on the left walking from "
+               "`from` to `to`, as for walls.",
+               member(O, &OpenSpec::from)),
+      vec2_key("outlet[].to", "m", required(), "End of the outlet segment.", member(O, &OpenSpec::to)),
+      real_key("outlet[].pressure", "Pa", def(0.0), any(),
+               "Pressure on the segment relative to the background: the fluid's pressure there is "
+               "fluid.p0 + pressure.",
+               member(O, &OpenSpec::pressure)),
+      int_key("outlet[].layers", def(std::int64_t{0}, "0 (= ceil(h / d0) + 1)"), closed(0, 20),
+              "Rows of buffer particles outside the domain behind the segment, d0 apart: 0 (the default, "
+              "ceil(h / d0) + 1, so that the buffer is deeper than h) or 2 to 20.",
+              member(O, &OpenSpec::layers)),
   };
 }
 
@@ -337,6 +389,16 @@ template <class E>
 SectionSpec array_section(std::string name, std::vector<E> Case::*m, std::string meaning) {
   return {std::move(name), true, std::move(meaning), [m](const Case& c) { return (c.*m).size(); },
           [m](Case& c, std::size_t n) { (c.*m).resize(n); }};
+}
+
+/// [[inlet]] or [[outlet]]: an array of OpenSpec whose elements all get `kind` when it is sized
+/// (the kind is the section, not a key).
+SectionSpec open_section(std::string name, std::vector<OpenSpec> Case::*m, OpenKind kind, std::string meaning) {
+  return {std::move(name), true, std::move(meaning), [m](const Case& c) { return (c.*m).size(); },
+          [m, kind](Case& c, std::size_t n) {
+            (c.*m).resize(n);
+            for (OpenSpec& o : c.*m) o.kind = kind;
+          }};
 }
 
 SectionSpec table_section(std::string name, std::string meaning) {
@@ -399,6 +461,20 @@ std::vector<SectionSpec> make_sections() {
                     "Rigid bodies, one [[body]] table each: free, fixed or with prescribed motion. The keys "
                     "marked \"for shape\" or \"for motion\" are used by those shapes or motions only, and "
                     "giving them for another is an error."),
+      open_section("inlet", &Case::inlets, OpenKind::Inlet,
+                   "Inlets, one [[inlet]] table each: a straight segment on an edge of the domain where fluid "
+                   "enters with a prescribed speed along the inward normal (uniform, parabolic or from a table, "
+                   "optionally ramped up), fed by `layers` rows of buffer particles outside the domain behind it. "
+                   "Checked at load: the segment lies on an edge of the domain that is not periodic, with the "
+                   "fluid (its left side) inside; it is at least 4 d0 long; each end is a corner of the domain or "
+                   "the end of a wall; no wall runs along it and no wall that slides or turns ends on it; it "
+                   "overlaps no other inlet or outlet; the case has an outlet at least L_b + 2 h away (L_b = "
+                   "layers d0, the larger of the two); no body comes within L_b + h + the contact distance of it "
+                   "at t = 0; numerics.boundary is \"single_layer\"."),
+      open_section("outlet", &Case::outlets, OpenKind::Outlet,
+                   "Outlets, one [[outlet]] table each: a straight segment on an edge of the domain where fluid "
+                   "leaves at a prescribed pressure, with `layers` rows of buffer particles outside the domain "
+                   "behind it. Checked at load as inlets (an outlet needs no inlet)."),
   };
 }
 

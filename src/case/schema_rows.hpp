@@ -258,5 +258,7 @@ inline KeySpec used_when(KeySpec s, std::string key, std::vector<std::string> va
 
 inline Value wall_name(std::size_t k) { return "wall" + std::to_string(k); }
 inline Value body_name(std::size_t k) { return "body" + std::to_string(k); }
+inline Value inlet_name(std::size_t k) { return "inlet" + std::to_string(k); }
+inline Value outlet_name(std::size_t k) { return "outlet" + std::to_string(k); }
 
 }  // namespace particula::schema_rows

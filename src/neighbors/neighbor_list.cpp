@@ -28,7 +28,9 @@ real distance2_if_kept(real d2, std::uint32_t keep) {
 
 }  // namespace
 
-void CellGrid::setup(const Domain& domain, real h) {
+void CellGrid::setup(const Domain& domain, real h, real margin) {
+  // cells beyond each bounded edge: one for particles slightly outside, more for a margin
+  const int extra = 1 + (margin > 0 ? static_cast<int>(std::ceil(margin / h)) : 0);
   geo_ = GridGeometry{};
   geo_.domain = domain;
   const Vec2 L = domain.size();
@@ -39,9 +41,9 @@ void CellGrid::setup(const Domain& domain, real h) {
       cell = len / n;
       origin = lo;
     } else {
-      n = std::max(1, static_cast<int>(std::ceil(len / h))) + 2;
+      n = std::max(1, static_cast<int>(std::ceil(len / h))) + 2 * extra;
       cell = h;
-      origin = lo - h;
+      origin = lo - extra * h;
     }
   };
   axis(domain.periodic_x, L.x, domain.lo.x, geo_.nx, geo_.cell_x, geo_.origin.x);

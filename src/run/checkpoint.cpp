@@ -24,13 +24,17 @@ static_assert(checkpoint_detail::aggregate_field_count<RigidGroup>() == kRigidGr
               "RigidGroup changed: update rigid_group_fields() and kRigidGroupFields in run/checkpoint.hpp");
 static_assert(checkpoint_detail::aggregate_field_count<SolverCounters>() == kSolverCountersFields,
               "SolverCounters changed: update solver_counters_fields() and kSolverCountersFields");
-static_assert(sizeof(Particles) == sizeof(std::size_t) + (kParticlesFields - 1) * sizeof(std::vector<real>),
+static_assert(sizeof(Particles) ==
+                  sizeof(std::size_t) + sizeof(std::int64_t) + (kParticlesFields - 2) * sizeof(std::vector<real>),
               "Particles changed: update particles_fields() and kParticlesFields in run/checkpoint.hpp");
 static_assert(sizeof(RigidGroup) == 280,
               "RigidGroup changed: update rigid_group_fields(), kRigidGroupFields and this size "
               "(run/checkpoint.hpp), then bump kCheckpointVersion");
 static_assert(sizeof(SolverCounters) == kSolverCountersFields * sizeof(std::int64_t),
               "SolverCounters changed: update solver_counters_fields() and kSolverCountersFields");
+static_assert(checkpoint_detail::aggregate_field_count<OpenFlux>() == kOpenFluxFields &&
+                  sizeof(OpenFlux) == kOpenFluxFields * 8,
+              "OpenFlux changed: update open_flux_fields() and kOpenFluxFields in run/checkpoint.hpp");
 
 namespace {
 
@@ -74,7 +78,8 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
   if (!std::isfinite(c.time) || c.time < 0 || c.step < 0) fail("time or step");
   for (std::int64_t counter : {c.counters.singular_B, c.counters.singular_Bhat, c.counters.wall_pressure_kept,
                                c.counters.wall_pressure_extrapolated, c.counters.normal_fallback,
-                               c.counters.surface_pushed, c.counters.gap_squeezed, c.counters.isolated_left_out})
+                               c.counters.surface_pushed, c.counters.gap_squeezed, c.counters.isolated_left_out,
+                               c.counters.open_fit_fallback})
     if (counter < 0) fail("negative guard counter");
   if (nb > n) fail("more boundary particles than particles");
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) fail("too many particles");
@@ -104,13 +109,15 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
       if (c.groups[k].body != static_cast<int>(k - walls)) fail(fmt::format("body index of rigid group {}", k));
     }
 
-  // Particles: kinds and groups by block, dummy sources within their group, ids a permutation.
-  std::vector<unsigned char> seen(n, 0);
+  // Particles: kinds and groups by block, dummy sources within their group, ids unique and
+  // below next_id (particles created at inlets take new ids; those removed at outlets leave gaps).
+  if (P.next_id < static_cast<std::int64_t>(n)) fail("next particle id below the particle count");
   for (std::size_t i = 0; i < n; ++i) {
     const auto kind = static_cast<std::uint8_t>(P.kind[i]);
-    if (kind > static_cast<std::uint8_t>(Kind::Dummy)) fail(fmt::format("kind of particle {}", i));
+    if (kind > static_cast<std::uint8_t>(Kind::Outlet)) fail(fmt::format("kind of particle {}", i));
     if (i < nb) {
-      if (P.kind[i] == Kind::Fluid) fail(fmt::format("fluid particle {} in the boundary block", i));
+      if (P.kind[i] != Kind::Boundary && P.kind[i] != Kind::Dummy)
+        fail(fmt::format("fluid or buffer particle {} in the boundary block", i));
       const std::int32_t g = P.group[i];
       if (g < 0 || static_cast<std::size_t>(g) >= n_groups) fail(fmt::format("group index of particle {}", i));
       const RigidGroup& G = c.groups[static_cast<std::size_t>(g)];
@@ -124,14 +131,20 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
         fail(fmt::format("source of surface particle {}", i));
       }
     } else {
-      if (P.kind[i] != Kind::Fluid) fail(fmt::format("boundary particle {} in the fluid block", i));
+      if (P.kind[i] == Kind::Boundary || P.kind[i] == Kind::Dummy)
+        fail(fmt::format("boundary particle {} in the fluid block", i));
       if (P.group[i] != -1) fail(fmt::format("group index of fluid particle {}", i));
     }
-    const std::int64_t id = P.id[i];
-    if (id < 0 || static_cast<std::uint64_t>(id) >= n || seen[static_cast<std::size_t>(id)])
-      fail(fmt::format("id of particle {} (ids must be 0 .. n-1, each once)", i));
-    seen[static_cast<std::size_t>(id)] = 1;
+    if (P.id[i] < 0 || P.id[i] >= P.next_id)
+      fail(fmt::format("id of particle {} (ids must be 0 .. next_id-1, each once)", i));
   }
+  std::vector<std::int64_t> ids(P.id);
+  std::sort(ids.begin(), ids.end());
+  if (std::adjacent_find(ids.begin(), ids.end()) != ids.end()) fail("two particles with one id");
+  for (const OpenFlux& f : c.open_flux)
+    if (!std::isfinite(f.mass) || f.mass < 0 || !std::isfinite(f.backflow_mass) || f.backflow_mass < 0 ||
+        f.created < 0 || f.deleted < 0)
+      fail("open-boundary flux");
 
   for (const OutputMark& m : c.marks)
     if (std::isnan(m.last_scheduled) || m.last_scheduled == std::numeric_limits<real>::infinity() ||
@@ -207,6 +220,12 @@ void check_checkpoint_fits_case(const Checkpoint& k, const Case& c, const std::f
   }
   check_values(k, fail);
   const Particles& P = k.particles;
+  if (k.open_flux.size() != c.inlets.size() + c.outlets.size())
+    fail(fmt::format("{} open-boundary fluxes, the case has {} inlets and {} outlets", k.open_flux.size(),
+                     c.inlets.size(), c.outlets.size()));
+  for (std::size_t i = P.n_boundary; i < P.size(); ++i)
+    if ((P.kind[i] == Kind::Inlet && c.inlets.empty()) || (P.kind[i] == Kind::Outlet && c.outlets.empty()))
+      fail(fmt::format("buffer particle {} of an open boundary the case does not have", i));
   if (c.boundary != BoundaryModel::Dummy)
     for (std::size_t i = 0; i < P.n_boundary; ++i)
       if (P.kind[i] == Kind::Dummy) fail(fmt::format("dummy particle {} with the single-layer boundary", i));
@@ -232,7 +251,7 @@ std::filesystem::path checkpoint_path(const std::filesystem::path& run_dir) {
 
 std::string encode_checkpoint(const Checkpoint& c) {
   return encode_checkpoint(
-      CheckpointView{c.case_toml, c.case_hash, c.time, c.step, c.counters, c.marks, c.particles, c.groups});
+      CheckpointView{c.case_toml, c.case_hash, c.time, c.step, c.counters, c.marks, c.particles, c.groups, c.open_flux});
 }
 
 std::string encode_checkpoint(const CheckpointView& c) {
@@ -245,6 +264,8 @@ std::string encode_checkpoint(const CheckpointView& c) {
     ar(m.stream);
     ar(m.last_scheduled);
   }
+  ar(static_cast<std::uint64_t>(c.open_flux.size()));
+  for (const OpenFlux& f : c.open_flux) open_flux_fields(ar, f);
   const std::string payload = ar.take();
 
   std::string out;
@@ -293,13 +314,16 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::filesystem::path
     ar(m.stream);
     ar(m.last_scheduled);
   }
+  c.open_flux.resize(ar.read_size(1));
+  for (OpenFlux& f : c.open_flux) open_flux_fields(ar, f);
   if (ar.remaining() != 0) fail("corrupted (unexpected data after the last field)");
   check_consistency(c, what);
   return c;
 }
 
 void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c) {
-  write_checkpoint(file, CheckpointView{c.case_toml, c.case_hash, c.time, c.step, c.counters, c.marks, c.particles, c.groups});
+  write_checkpoint(file,
+                   CheckpointView{c.case_toml, c.case_hash, c.time, c.step, c.counters, c.marks, c.particles, c.groups, c.open_flux});
 }
 
 void write_checkpoint(const std::filesystem::path& file, const CheckpointView& c) {

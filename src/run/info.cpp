@@ -23,10 +23,11 @@ int info_command(const std::filesystem::path& case_file, const std::vector<std::
   }
   Scene scene = build_scene(c);
   const Particles& P = scene.particles;
-  std::size_t n_fluid = 0, n_surface = 0, n_dummy = 0;
+  std::size_t n_fluid = 0, n_surface = 0, n_dummy = 0, n_buffer = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {
     if (P.kind[i] == Kind::Fluid) ++n_fluid;
     else if (P.kind[i] == Kind::Boundary) ++n_surface;
+    else if (is_buffer(P.kind[i])) ++n_buffer;
     else ++n_dummy;
   }
   // With timing: build the solver (neighbour list, initial wall pressure) and time 5 steps.
@@ -53,7 +54,9 @@ int info_command(const std::filesystem::path& case_file, const std::vector<std::
   const SizeEstimate size = estimate_size(c);
   const double bytes = static_cast<double>(P.size()) * 48 * 8 + pairs * 4 + size.probe_bytes;
   std::printf("case            %s (%s)\n", c.name.c_str(), case_file.string().c_str());
-  std::printf("particles       %zu: %zu fluid, %zu boundary surface, %zu dummy\n", P.size(), n_fluid, n_surface, n_dummy);
+  std::printf("particles       %zu: %zu fluid, %zu boundary surface, %zu dummy", P.size(), n_fluid, n_surface, n_dummy);
+  if (n_buffer > 0) std::printf(", %zu in the buffers of open boundaries", n_buffer);
+  std::printf("\n");
   std::printf("rigid groups    %zu\n", scene.groups.size());
   std::printf("d0, h           %.6g m, %.6g m (%.3g neighbours per particle)\n", c.d0, c.h(), pairs / P.size());
   std::printf("initial dt      %.6g s (P.29-P.31, alpha = %g%s)\n", dt, c.cfl,

@@ -132,6 +132,10 @@ void RunOutputs::add(std::string key, real interval, std::function<std::optional
 RunOutputs::RunOutputs(const fs::path& dir, const Case& c, io::StopCheck stop) {
   bodies_ = std::make_unique<BodyHistoryWriter>(dir, c);
   add("bodies", c.output_interval, [this](const Solver& s) { return bodies_->write(s); });
+  if (!c.inlets.empty() || !c.outlets.empty()) {
+    open_ = std::make_unique<OpenBoundaryWriter>(dir);
+    add("open_boundaries", c.output_interval, [this](const Solver& s) { return open_->write(s); });
+  }
   for (const auto& p : c.probes) {
     probes_.push_back(std::make_unique<ProbeWriter>(dir, p, c, stop));
     ProbeWriter* w = probes_.back().get();
@@ -171,6 +175,17 @@ RunOutputs::RunOutputs(const fs::path& dir, const Case& c, const std::vector<Out
     for (CsvRelay* r : body_relays) r->pump();
     return std::optional<Failure>();
   });
+  if (!c.inlets.empty() || !c.outlets.empty()) {
+    open_ = std::make_unique<OpenBoundaryWriter>(scratch_);
+    csv_relays_.push_back(std::make_unique<CsvRelay>(scratch_ / "open_boundaries.csv", dir / "open_boundaries.csv",
+                                                     mark("open_boundaries")));
+    CsvRelay* relay = csv_relays_.back().get();
+    add("open_boundaries", c.output_interval, [this, relay](const Solver& s) {
+      if (auto f = open_->write(s)) return f;
+      relay->pump();
+      return std::optional<Failure>();
+    });
+  }
   for (const auto& p : c.probes) {
     probes_.push_back(std::make_unique<ProbeWriter>(scratch_, p, c, stop));
     std::vector<CsvRelay*> relays;  // probe_<name>.csv and, for a line, flow_<name>.csv

@@ -71,6 +71,7 @@ class RunOutputs {
   std::filesystem::path scratch_;  // resumed runs: where the observers write before relaying
   std::unique_ptr<SnapshotWriter> snapshots_;
   std::unique_ptr<BodyHistoryWriter> bodies_;
+  std::unique_ptr<OpenBoundaryWriter> open_;  // cases with inlets or outlets
   std::vector<std::unique_ptr<ProbeWriter>> probes_;
   std::vector<std::unique_ptr<CsvRelay>> csv_relays_;
   std::unique_ptr<SnapshotRelay> snapshot_relay_;

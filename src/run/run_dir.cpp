@@ -34,7 +34,7 @@ bool all_digits(std::string_view s) {
 /// A file name particula writes at the top of a run directory (or of its .resume scratch).
 bool top_file(std::string_view name) {
   for (const char* known : {kRunMarker, "case.toml", "summary.json", "log.txt", "bodies.csv", "walls.csv",
-                            "coefficients.csv", "particles.pvd"})
+                            "coefficients.csv", "open_boundaries.csv", "particles.pvd"})
     if (name == known) return true;
   return (starts_with(name, "probe_") && ends_with(name, ".csv") && name.size() > 10) ||
          (starts_with(name, "flow_") && ends_with(name, ".csv") && name.size() > 9);

@@ -197,6 +197,22 @@ io::JsonObject run_summary(const Session& s, const RunEnd& end, std::optional<do
   io::JsonObject guards;
   for (const auto& [name, count] : guard_events(solver.counters())) guards.set(name, count);
   summary.set("guard_events", guards);
+  if (!solver.open_flux().empty()) {
+    // what crossed each open boundary (open_boundaries.csv over time), and the fluid mass now
+    std::vector<io::JsonObject> open;
+    const std::vector<std::int64_t> buffers = buffer_counts(solver);
+    for (std::size_t z = 0; z < solver.open_flux().size(); ++z) {
+      const OpenFlux& f = solver.open_flux()[z];
+      io::JsonObject o;
+      o.set("index", z).set("name", solver.params().open_specs[z].name);
+      o.set("kind", std::string(solver.params().open[z].inlet ? "inlet" : "outlet"));
+      o.set("mass", f.mass).set("backflow_mass", f.backflow_mass);
+      o.set("created", f.created).set("deleted", f.deleted).set("buffer_particles", buffers[z]);
+      open.push_back(std::move(o));
+    }
+    summary.set("open_boundaries", open);
+    summary.set("fluid_mass", fluid_mass(solver.particles()));
+  }
   for (const auto& p : s.outputs->probes())
     if (auto e = p->last_error()) summary.set("probe_error_" + p->spec().name, *e);
   if (profile_error) summary.set("profile_error", *profile_error);
@@ -210,7 +226,8 @@ void save_checkpoint(const fs::path& file, const Session& s) {
   const std::int64_t step = solver.step_count();
   const std::vector<OutputMark> marks = s.outputs->marks();
   write_checkpoint(file,
-                   CheckpointView{toml, s.case_hash, t, step, solver.counters(), marks, solver.particles(), solver.groups()});
+                   CheckpointView{toml, s.case_hash, t, step, solver.counters(), marks, solver.particles(), solver.groups(),
+                                  solver.open_flux()});
 }
 
 /// The run has written its initial state: when it replaces an old run directory, a checkpoint
@@ -568,6 +585,7 @@ int resume_command(const ResumeOptions& opt) {
     s.solver = std::make_unique<Solver>(prm, domain, std::move(k.particles), std::move(k.groups),
                                         SolverStart::Restart, k.time, k.step);
     s.solver->set_counters(k.counters);
+    s.solver->set_open_flux(k.open_flux);
     s.outputs = std::make_unique<RunOutputs>(s.dir, s.c, k.marks, k.time, stop_requested);
     if (stop_requested()) return interrupted_before_start(s, *rep, "the run directory is as it was");
     return run_loop(s, *rep, opt.plots);

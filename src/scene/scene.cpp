@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "particula/fluid/fluid.hpp"
+#include "scene_open.hpp"
 #include "scene_walls.hpp"
 
 namespace particula {
@@ -92,6 +93,12 @@ PhysicsParams physics_params(const Case& c) {
   p.collision_lubrication = c.collision_lubrication;
   p.collision_lubrication_range = c.collision_lubrication_range;
   for (const auto& w : c.walls) p.walls.push_back(w.piece());
+  // the open boundaries on the fluid lattice (spacing as build_scene's)
+  const Vec2 L = c.domain_max - c.domain_min;
+  const real dx = L.x / std::max(1, static_cast<int>(std::lround(L.x / c.d0)));
+  const real dy = L.y / std::max(1, static_cast<int>(std::lround(L.y / c.d0)));
+  p.open = scene_detail::open_zones(c, dx, dy);
+  p.open_specs = c.open_boundaries();
   const Domain dom{c.domain_min, c.domain_max, c.periodic_x, c.periodic_y};
   for (const auto& b : c.bodies) {
     BodyParams bp{b.name, body_shape(b), {}, b.motion, b.velocity, b.omega, b.schedule, {}, 0, {}};
@@ -507,6 +514,7 @@ Scene build_scene(const Case& c) {
     P.m[i] = P.rho[i] * farea[k];
   }
   for (std::size_t i = 0; i < n; ++i) P.id[i] = static_cast<std::int64_t>(i);
+  scene_detail::append_buffers(c, sc);
   return sc;
 }
 

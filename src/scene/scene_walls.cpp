@@ -2,6 +2,8 @@
 // the region the walls enclose (the fluid fills the left side of the walls).
 #include "scene_walls.hpp"
 
+#include "scene_open.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -58,7 +60,19 @@ std::vector<SurfacePoint> sample_wall(const Case& c, const Domain& dom, std::siz
     }
     pts.push_back(sp);
   }
-  return pts;
+  // A wall that leaves the domain through an open boundary continues through its buffer.
+  const int before = wall_extension_points(c, ws, false, ds), after = wall_extension_points(c, ws, true, ds);
+  std::vector<SurfacePoint> ext;
+  for (int k = -before; k < 0; ++k) {
+    const real s = static_cast<real>(k) / n;
+    ext.push_back({piece.point_at(s), piece.normal_at(0), ds, false, {}, piece.normal_at(0)});
+  }
+  ext.insert(ext.end(), pts.begin(), pts.end());
+  for (int k = n + 1; k <= n + after; ++k) {
+    const real s = static_cast<real>(k) / n;
+    ext.push_back({piece.point_at(s), piece.normal_at(1), ds, false, {}, piece.normal_at(1)});
+  }
+  return ext;
 }
 
 /// Dummy particles of the baseline boundary (method.md section 6, last paragraph): `layers`

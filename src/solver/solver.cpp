@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 #include <type_traits>
 #include <utility>
 
@@ -24,10 +25,19 @@ Solver::Solver(PhysicsParams params, Domain domain, Particles particles, std::ve
                SolverStart start, real t0, std::int64_t step0)
     : prm_(params), domain_(domain), P_(std::move(particles)), groups_(std::move(groups)), kernel_(params.h),
       t_(t0), steps_(step0) {
-  grid_.setup(domain_, prm_.h);
+  if (prm_.cuda && !prm_.open.empty())
+    throw std::runtime_error("open boundaries ([[inlet]], [[outlet]]) run on the CPU backend only for now: "
+                             "use --backend cpu");
+  real margin = 0;  // the buffers behind open boundaries lie outside the domain
+  for (const OpenZone& z : prm_.open) margin = std::max(margin, z.depth);
+  grid_.setup(domain_, prm_.h, margin);
+  open_flux_.resize(prm_.open.size());
   if (start == SolverStart::Fresh) {
     place_boundary(t_);
     refresh_geometry();
+    open_ghost_weights();
+    open_velocities(t_);
+    open_pressures();
     // Initial wall pressure consistent with the initial fluid state (P.20): iterate the Jacobi
     // sweeps to convergence once, since boundary particles start without a pressure.
     compute_velocity_derivatives(P_.v);
@@ -165,6 +175,8 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   } else {
     refresh_geometry();
   }
+  open_ghost_weights();
+  open_min_distance();
   if (prm_.momentum_force) {
     PhaseTimer timer(times_.bodies);
     build_load_band();
@@ -188,6 +200,8 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
     contact_forces(dt);
   }
   const StageParams sp = stage_params(dt);
+  open_velocities(t_ + 0.5 * dt);
+  open_pressures();
 
   save_stage_start(StageStart::StepStart);
   std::vector<Vec2>& gv0 = group_v0_;
@@ -224,6 +238,7 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
     PhaseTimer timer(times_.operators);
     derivatives_and_continuity(StageStart::StepStart, sp);
   }
+  open_pressures();
   boundary_pressure();
 
   // ---- corrector: V** = V* + dt A(V*, P*); bodies likewise; rho** = rho* + dt D(V**, P*)
@@ -242,6 +257,7 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
     PhaseTimer timer(times_.operators);
     derivatives_and_continuity(StageStart::Predicted, sp);
   }
+  open_pressures();
   boundary_pressure();
 
   // ---- update (P.28, P.32): averages of the stage-start and corrected values
@@ -249,6 +265,7 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   {
     PhaseTimer timer(times_.integration);
     vmax2 = end_of_step(dt);
+    open_move(dt);
   }
   if (!prm_.single_layer) boundary_pressure();  // dummies copy the averaged surface values
   t_ = t_new;
@@ -266,6 +283,7 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   }
   PhaseTimer timer(times_.integration);
   guard_surfaces();
+  open_transfer();
   return check_health();
 }
 
@@ -301,7 +319,7 @@ std::optional<Failure> Solver::check_health() const {
     const std::size_t n = P_.size();
 #pragma omp parallel for schedule(static) reduction(min : worst)
     for (std::size_t i = 0; i < n; ++i)
-      if (particle_unhealthy(P_.is_fluid(i), P_.x[i], P_.v[i], P_.rho[i], P_.p[i], lim)) worst = std::min(worst, P_.id[i]);
+      if (particle_unhealthy(P_.kind[i] == Kind::Fluid, P_.x[i], P_.v[i], P_.rho[i], P_.p[i], lim)) worst = std::min(worst, P_.id[i]);
     if (worst == std::numeric_limits<std::int64_t>::max()) return unhealthy_group(groups_);
   }
   std::size_t i = 0;

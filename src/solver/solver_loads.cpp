@@ -161,14 +161,15 @@ void Solver::build_load_band() {
 #pragma omp parallel for schedule(static)
   for (std::size_t f = 0; f < nf; ++f) {
     NearSolid near[kMaxNear];
-    band_count_[f + 1] = static_cast<std::uint32_t>(near_solids(x[nb + f], reach, near, kMaxNear));
+    // buffer particles of open boundaries are set, not integrated: they carry no momentum balance
+    band_count_[f + 1] = in_load_band(nb + f) ? static_cast<std::uint32_t>(near_solids(x[nb + f], reach, near, kMaxNear)) : 0;
   }
   for (std::size_t f = 0; f < nf; ++f) band_count_[f + 1] += band_count_[f];
   band_unsorted_.resize(band_count_[nf]);
 #pragma omp parallel for schedule(static)
   for (std::size_t f = 0; f < nf; ++f) {
     NearSolid near[kMaxNear];
-    const int count = near_solids(x[nb + f], reach, near, kMaxNear);
+    const int count = in_load_band(nb + f) ? near_solids(x[nb + f], reach, near, kMaxNear) : 0;
     const real area = count > 0 ? band_cell_area(nb + f, x) : 0;
     for (int k = 0; k < count; ++k) {
       BandEntry& e = band_unsorted_[band_count_[f] + static_cast<std::size_t>(k)];

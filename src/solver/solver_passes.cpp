@@ -86,7 +86,7 @@ void Solver::geometry_sweep() {
 #pragma omp parallel for schedule(static) reduction(+ : bad_B, bad_Bhat, bad_normal, lone)
   for (std::size_t i = 0; i < n; ++i) {
     const GeometryAt g = geometry_at(c, i, prm_.d0, grad_w, lap_w);
-    isolated_out[i] = i >= nb && isolated(g.others_fluid_support, one_neighbour, g.near.a) ? 1 : 0;
+    isolated_out[i] = i >= nb && P_.kind[i] == Kind::Fluid && isolated(g.others_fluid_support, one_neighbour, g.near.a) ? 1 : 0;
     lone += isolated_out[i];
     B_[i] = g.B;
     Bhat_[i] = g.Bhat;
@@ -95,7 +95,8 @@ void Solver::geometry_sweep() {
     lap_esum_[i] = g.lap_esum;
     near_a_[i] = g.near.a;
     near_b_[i] = g.near.b;
-    if (P_.kind[i] == Kind::Dummy) continue;
+    // dummies, and buffer particles whose support is one-sided by design, are not events
+    if (P_.kind[i] == Kind::Dummy || is_buffer(P_.kind[i])) continue;
     bad_B += g.B_ok ? 0 : 1;
     bad_Bhat += g.Bhat_ok ? 0 : 1;
     // P.18 normal; on failure the analytic normal set by place_boundary stays.
@@ -202,6 +203,8 @@ void Solver::boundary_pressure() {
       const WallPressureOutcome o =
           wall_pressure_at(c, i, P_.p.data(), P_.rho.data(), P_.normal[i], P_.acc[i], prm_.nu * lapV_[i], f,
                            min_den, p_new_[i]);
+      // the tip of a wall continued through an open boundary's buffer is one-sided by design
+      if (o != WallPressureOutcome::Solved && in_open_buffer(P_.x[i])) continue;
       kept += o == WallPressureOutcome::Kept ? 1 : 0;
       extrapolated += o == WallPressureOutcome::Extrapolated ? 1 : 0;
       far += o == WallPressureOutcome::ExtrapolatedFar ? 1 : 0;
@@ -265,9 +268,11 @@ void Solver::shift_particles(real dt, real vmax) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) gradV_[i] = 0.5 * (gradV_[i] + gradV_n_[i]);
   if (!(scale > 0)) return;
+  open_limit_shifting();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = nb; i < n; ++i)
-    shift_particle(shift_dir_[i], scale, gradV_[i], G_[i],
+    if (P_.kind[i] == Kind::Fluid)
+      shift_particle(shift_dir_[i], scale, gradV_[i], G_[i],
                    gather_surfaces(near_a_[i], near_b_[i], P_.x.data(), P_.normal.data(), P_.v.data()), prm_.d0,
                    domain_, prm_.c, P_.x[i], P_.v[i], P_.p[i], P_.rho[i]);
 }
@@ -280,6 +285,7 @@ void Solver::guard_surfaces() {
   std::int64_t pushed = 0, gap = 0;
 #pragma omp parallel for schedule(static) reduction(+ : pushed, gap)
   for (std::size_t i = nb; i < n; ++i) {
+    if (P_.kind[i] != Kind::Fluid) continue;
     const GuardOutcome o =
         surface_guard_at(i, near_a_.data(), near_b_.data(), P_.x.data(), P_.normal.data(), P_.v.data(), keep, domain_);
     pushed += o == GuardOutcome::Pushed ? 1 : 0;

@@ -51,6 +51,37 @@ struct WallSpec {
   }
 };
 
+/// An open boundary (docs/method-notes.md, "Open boundaries"): a straight segment on a bounded
+/// edge of the domain, fluid on its LEFT walking from `from` to `to` (as for walls), where fluid
+/// enters (an inlet, with a prescribed velocity along the inward normal) or leaves (an outlet, at
+/// a prescribed pressure). Outside the domain behind it lies a buffer of `layers` rows of
+/// particles whose fields the boundary sets.
+enum class OpenKind { Inlet, Outlet };
+/// The inlet's velocity profile across the segment: uniform, a parabola that vanishes at both
+/// ends (peak `velocity` in the middle), or a table of (distance from `from`, speed), linear in
+/// between.
+enum class InletProfile { Uniform, Parabolic, Table };
+
+struct OpenSpec {
+  std::string name;
+  OpenKind kind = OpenKind::Inlet;
+  Vec2 from, to;
+  InletProfile profile = InletProfile::Uniform;  // inlet
+  real velocity = 0;                             // inlet: uniform speed or parabola peak (m/s, into the fluid)
+  std::vector<Vec2> table;                       // inlet, profile table: (s in m from `from`, speed in m/s)
+  real ramp_time = 0;                            // inlet: speed ramped as (1 - cos(pi t / T)) / 2 until T; 0 = none
+  real pressure = 0;                             // outlet: P on the line is fluid.p0 + pressure (Pa)
+  int layers = 0;                                // rows of buffer particles; 0 = ceil(h / d0) + 1
+
+  /// Unit tangent (from -> to) and inward normal (its left).
+  Vec2 tangent() const { return (to - from) / norm(to - from); }
+  Vec2 inward_normal() const {
+    const Vec2 t = tangent();
+    return {-t.y, t.x};
+  }
+  real width() const { return norm(to - from); }
+};
+
 /// A probe is a line (`points` equally spaced points from `from` to `to`, both ends included)
 /// or a list of points (`at`).
 enum class ProbeKind { Line, Points };
@@ -189,6 +220,8 @@ struct Case {
   std::vector<WallSpec> walls;
   std::vector<ProbeSpec> probes;
   std::vector<BodySpec> bodies;
+  std::vector<OpenSpec> inlets;   // kind Inlet
+  std::vector<OpenSpec> outlets;  // kind Outlet
 
   real h() const { return h_over_d0 * d0; }
   real mu() const { return nu * rho0; }
@@ -199,6 +232,16 @@ struct Case {
   }
   /// Whether solids interact at all (the paper's force is off without a stiffness).
   bool contacts_active() const { return collision_model != ContactModel::Paper || collision_stiffness > 0; }
+  /// Rows of buffer particles behind open boundary `o` (its own, or ceil(h/d0) + 1).
+  int open_layers(const OpenSpec& o) const {
+    return o.layers > 0 ? o.layers : static_cast<int>(std::ceil(h_over_d0 - 1e-9)) + 1;
+  }
+  /// Inlets then outlets: the order of the open boundaries (zones) in the solver and outputs.
+  std::vector<OpenSpec> open_boundaries() const {
+    std::vector<OpenSpec> all = inlets;
+    all.insert(all.end(), outlets.begin(), outlets.end());
+    return all;
+  }
 };
 
 /// The reference of a body's coefficients: its own velocity and length where given, else the

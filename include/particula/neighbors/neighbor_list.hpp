@@ -109,7 +109,9 @@ PARTICULA_HD void visit_neighbors(const GridGeometry& g, real h2, const Vec2* x,
 /// The cell grid with its particle binning (host side).
 class CellGrid {
  public:
-  void setup(const Domain& domain, real h);
+  /// Cells of side h (at least 3 along a periodic axis); along a bounded axis one more cell on
+  /// each side, and enough more to hold particles up to `margin` outside the domain.
+  void setup(const Domain& domain, real h, real margin = 0);
   /// Bins all particles by cell (counting sort, stable in particle index).
   void bin(const std::vector<Vec2>& x);
 

@@ -7,7 +7,7 @@
 //   u32       byte-order mark 0x01020304 (values are in the writer's byte order)
 //   u64       payload size in bytes
 //   payload   case TOML text, case identity hash, time, step, SolverCounters, Particles,
-//             RigidGroups, output marks
+//             RigidGroups, output marks, open-boundary fluxes
 //   u64       FNV-1a 64 checksum of the payload
 //
 // Reading refuses, with an io::IoError naming the file, a wrong magic, another format
@@ -33,7 +33,7 @@
 namespace particula {
 
 /// Bump when the layout or any field list below changes; older files are then refused.
-inline constexpr std::uint32_t kCheckpointVersion = 8;
+inline constexpr std::uint32_t kCheckpointVersion = 9;
 
 /// When an output stream ("bodies", "snapshots", "probe:<name>") was last written on its
 /// regular schedule. A resumed run drops rows after this time (the extra final-state rows of an
@@ -52,6 +52,7 @@ struct Checkpoint {
   std::vector<OutputMark> marks;
   Particles particles;
   std::vector<RigidGroup> groups;
+  std::vector<OpenFlux> open_flux;  // one per open boundary (inlets, then outlets)
 };
 
 /// The same content by reference, so that a running solver's state is written without a copy.
@@ -64,6 +65,7 @@ struct CheckpointView {
   const std::vector<OutputMark>& marks;
   const Particles& particles;
   const std::vector<RigidGroup>& groups;
+  const std::vector<OpenFlux>& open_flux;
 };
 
 /// The identity of a run's case: the FNV-1a 64 hash of the resolved case text (what particula
@@ -102,13 +104,15 @@ Checkpoint read_checkpoint(const std::filesystem::path& file);
 // the field count below, and bump kCheckpointVersion. tests/test_checkpoint.cpp and the
 // static_asserts in src/run/checkpoint.cpp fail until you do.
 
-inline constexpr std::size_t kParticlesFields = 15;  // n_boundary + 14 arrays
+inline constexpr std::size_t kParticlesFields = 16;  // n_boundary, next_id + 14 arrays
 inline constexpr std::size_t kRigidGroupFields = 25;
-inline constexpr std::size_t kSolverCountersFields = 9;
+inline constexpr std::size_t kSolverCountersFields = 10;
+inline constexpr std::size_t kOpenFluxFields = 4;
 
 template <class Ar, class P>
 void particles_fields(Ar& ar, P& p) {
   ar(p.n_boundary);
+  ar(p.next_id);
   // every particle
   ar(p.x);
   ar(p.v);
@@ -167,6 +171,15 @@ void solver_counters_fields(Ar& ar, C& c) {
   ar(c.surface_pushed);
   ar(c.gap_squeezed);
   ar(c.isolated_left_out);
+  ar(c.open_fit_fallback);
+}
+
+template <class Ar, class F>
+void open_flux_fields(Ar& ar, F& f) {
+  ar(f.mass);
+  ar(f.backflow_mass);
+  ar(f.created);
+  ar(f.deleted);
 }
 
 namespace checkpoint_detail {

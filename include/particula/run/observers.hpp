@@ -103,6 +103,26 @@ class BodyHistoryWriter {
   double rho0_ = 0, nu_ = 0;
 };
 
+/// open_boundaries.csv (cases with inlets or outlets): one row per open boundary per output,
+/// time,boundary,mass,backflow_mass,created,deleted,buffer_particles,fluid_mass: the boundary's
+/// index (inlets, then outlets, in case order), the mass that crossed it since t = 0 (kg/m: into
+/// the fluid at an inlet, out of it at an outlet), the fluid that left backwards through an inlet,
+/// the buffer particles created and the particles deleted there, its buffer particles now, and
+/// the mass of all fluid particles (the same on each row of a time). The fluid mass changes by
+/// exactly the inflow minus the outflow and the backflow, so the file checks mass conservation.
+class OpenBoundaryWriter {
+ public:
+  explicit OpenBoundaryWriter(const std::filesystem::path& run_dir);
+  std::optional<Failure> write(const Solver& s);
+
+ private:
+  io::CsvWriter csv_;
+};
+
+/// The fluid mass (kind Fluid) and the buffer particles of each open boundary now.
+real fluid_mass(const Particles& P);
+std::vector<std::int64_t> buffer_counts(const Solver& s);
+
 /// The velocity of the exact solution the case declares at (x, t); nullopt when it has none.
 std::optional<Vec2> exact_velocity(const Case& c, Vec2 x, double t);
 /// The squared error of a velocity against the exact one: of vx for the channel flows (couette,

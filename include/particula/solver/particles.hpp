@@ -12,10 +12,17 @@
 
 namespace particula {
 
-enum class Kind : std::uint8_t { Fluid = 0, Boundary = 1, Dummy = 2 };
+/// Fluid: integrated fluid particles. Boundary: wall and body surface particles. Dummy: the
+/// baseline's dummy particles. Inlet, Outlet: buffer particles behind an open boundary (in the
+/// fluid block, not integrated: boundary/open_boundary.hpp).
+enum class Kind : std::uint8_t { Fluid = 0, Boundary = 1, Dummy = 2, Inlet = 3, Outlet = 4 };
+
+/// Whether a particle of this kind is a buffer particle of an open boundary.
+PARTICULA_HD bool is_buffer(Kind k) { return k == Kind::Inlet || k == Kind::Outlet; }
 
 struct Particles {
   std::size_t n_boundary = 0;
+  std::int64_t next_id = 0;  // the id of the next particle created (open boundaries); ids are never reused
 
   // every particle
   std::vector<Vec2> x, v;

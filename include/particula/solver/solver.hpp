@@ -11,6 +11,7 @@
 
 #include "particula/bodies/collision.hpp"
 #include "particula/bodies/contact_pairs.hpp"
+#include "particula/boundary/open_boundary.hpp"
 #include "particula/case/case.hpp"
 #include "particula/geometry/shape.hpp"
 #include "particula/neighbors/domain.hpp"
@@ -79,6 +80,17 @@ struct PhysicsParams {
   bool collision_lubrication = true;
   real collision_lubrication_range = 0;   // m; 0 = 2 d0
   bool cuda = false;             // particle passes on the GPU (--backend cuda)
+  // open boundaries (boundary/open_boundary.hpp): inlets then outlets, the zone and its case entry
+  std::vector<OpenZone> open;
+  std::vector<OpenSpec> open_specs;
+};
+
+/// What crossed an open boundary (zone) since the start of the run; checkpointed.
+struct OpenFlux {
+  real mass = 0;           // kg/m: into the fluid at an inlet, out of it at an outlet
+  real backflow_mass = 0;  // kg/m: fluid that crossed an inlet backwards (deleted)
+  std::int64_t created = 0;  // buffer particles created (inlet)
+  std::int64_t deleted = 0;  // particles deleted (outlet: past the buffer; inlet: backflow)
 };
 
 /// Counters of guarded events (written to the run log).
@@ -92,6 +104,7 @@ struct SolverCounters {
   std::int64_t surface_pushed = 0;      // fluid particle put back to the keep-out distance of a surface
   std::int64_t gap_squeezed = 0;        // fluid particle centred in a gap narrower than twice that
   std::int64_t isolated_left_out = 0;   // isolated fluid particle left out of P.20 (particle-steps)
+  std::int64_t open_fit_fallback = 0;   // buffer particle whose mirrored fit was singular -> Shepard mean
 };
 
 /// The counters by the names summary.json and the Python module give them (one list for both).
@@ -104,7 +117,8 @@ inline std::vector<std::pair<const char*, std::int64_t>> guard_events(const Solv
           {"normal_fallback", c.normal_fallback},
           {"surface_pushed", c.surface_pushed},
           {"gap_squeezed", c.gap_squeezed},
-          {"isolated_left_out", c.isolated_left_out}};
+          {"isolated_left_out", c.isolated_left_out},
+          {"open_fit_fallback", c.open_fit_fallback}};
 }
 
 /// Wall-clock seconds spent in each phase of the time step, summed over the steps taken (the
@@ -179,6 +193,10 @@ class Solver {
 
   /// Guard counters (checkpoints carry them so a resumed run reports totals).
   void set_counters(const SolverCounters& c) { counters_ = c; }
+  /// What crossed each open boundary (inlets, then outlets) since the start of the run.
+  const std::vector<OpenFlux>& open_flux() const { return open_flux_; }
+  /// Restores the fluxes of a checkpoint (one per open boundary).
+  void set_open_flux(const std::vector<OpenFlux>& f) { open_flux_ = f; }
 
   /// Rebuilds neighbours and position-only quantities for the current positions (used before
   /// output and by tests of the operators).
@@ -272,6 +290,38 @@ class Solver {
   void body_stage(real dt, real t_stage_end, const std::vector<Vec2>& v0, const std::vector<real>& omega0);
   void body_update(real dt, real t_new);
   void shift_particles(real dt, real vmax);
+  // ---- open boundaries (solver_open.cpp; boundary/open_boundary.hpp)
+  /// The buffer particles of this step and, for each, the coefficients of the linear MLS fit
+  /// over the fluid round its ghost point (value there, and continued to the particle).
+  void open_ghost_weights();
+  /// Buffer velocities for the step to t_mid (the middle of the step): the inlet's profile,
+  /// the fluid's fitted velocity at an outlet.
+  void open_velocities(real t_mid);
+  /// Buffer pressures and densities from the fluid's current pressure (inlet: continued
+  /// linearly; outlet: mirrored about the line's pressure).
+  void open_pressures();
+  /// The closest pair of this step's list for the time step, leaving out pairs of two buffer
+  /// particles: they are not integrated, and converted outlet particles of different speeds may
+  /// close up on each other in the buffer.
+  void open_min_distance();
+  /// Moves the buffer particles along their zone's normal by dt times their normal velocity.
+  void open_move(real dt);
+  /// Takes the normal part out of the shifting direction of fluid particles within h of an open line.
+  void open_limit_shifting();
+  /// Converts, deletes and creates particles at the open boundaries (end of step, index order).
+  void open_transfer();
+  /// The zone of a buffer particle of kind `k` at x: the zone of that kind whose line is nearest.
+  int open_zone_of(Vec2 x, Kind k) const;
+  /// Whether x lies beyond an open boundary's line, in its buffer.
+  bool in_open_buffer(Vec2 x) const {
+    for (const OpenZone& z : prm_.open)
+      if (beyond_open_line(z, x)) return true;
+    return false;
+  }
+  /// The inlet's inflow speed at distance s along it, at time t.
+  real inlet_speed(std::size_t zone, real s, real t) const;
+  /// Whether fluid-block particle i takes part in the band momentum balance (not a buffer particle).
+  bool in_load_band(std::size_t i) const { return prm_.open.empty() || !is_buffer(P_.kind[i]); }
   /// The surface guard (boundary/surface_guard.hpp) on every fluid particle.
   void guard_surfaces();
   GroupMotion group_motion(const RigidGroup& g) const;
@@ -349,6 +399,15 @@ class Solver {
   std::vector<real> body_bound_;
   std::vector<BodyPair> body_pairs_;
   std::vector<real> contact_approach_;
+
+  // open boundaries: the buffer particles of this step, their zones, and the CSR of their ghost
+  // fits (fluid particle, coefficient of the value at the ghost point, of the value continued to
+  // the buffer particle)
+  std::vector<std::uint32_t> buffer_;
+  std::vector<int> buffer_zone_;
+  std::vector<std::uint32_t> ghost_start_, ghost_j_;
+  std::vector<real> ghost_val_, ghost_lin_;
+  std::vector<OpenFlux> open_flux_;
 
   // reordering scratch
   std::vector<std::uint32_t> reorder_key_;

@@ -318,7 +318,7 @@ PARTICULA_HD Vec2 momentum_stage(Vec2 v_start, Vec2 grad_p_over_rho, Vec2 lap_v,
 /// Whether particle i's density evolves by the continuity equation: fluid particles, and in the
 /// dummy baseline also the surface particles (the single-layer wall gets P from P.20 instead).
 PARTICULA_HD bool evolves_density(std::size_t i, std::size_t nb, Kind kind, bool single_layer) {
-  return (i >= nb || !single_layer) && kind != Kind::Dummy;
+  return (i >= nb || !single_layer) && kind != Kind::Dummy && !is_buffer(kind);
 }
 
 /// Modified continuity stage (P.13-P.16) and the equation of state: rho = rho_start + dt D, P(rho).
@@ -330,9 +330,11 @@ PARTICULA_HD void continuity_stage(real rho_start, real div_v, real rhie_chow, c
 
 /// End of step (P.28): fluid velocity and density the mean of the step-start and corrected
 /// values, position advanced with the new velocity. Returns |V|^2 for the shifting scale.
+/// Buffer particles of open boundaries keep the fields the boundary set and are moved by it.
 PARTICULA_HD real end_of_step_update(std::size_t i, std::size_t nb, Kind kind, const Domain& domain, real dt,
                                      bool single_layer, Vec2 v_n, real rho_n, real p_n, Vec2& x, Vec2& v, real& rho,
                                      real& p) {
+  if (is_buffer(kind)) return norm2(v);
   if (i >= nb) {
     v = 0.5 * (v + v_n);
     x = domain.wrap(x + dt * v);
@@ -375,8 +377,8 @@ struct HealthLimits {
   Domain domain;
 };
 
-/// Whether particle i is unhealthy: a non-finite value, or for a fluid particle a density
-/// outside the limits or a position outside a closed domain (by more than h).
+/// Whether particle i is unhealthy: a non-finite value, or for a fluid particle (`fluid`: kind
+/// Fluid) a density outside the limits or a position outside a closed domain (by more than h).
 PARTICULA_HD bool particle_unhealthy(bool fluid, Vec2 x, Vec2 v, real rho, real p, const HealthLimits& l) {
   const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(v.x) && std::isfinite(v.y) &&
                       std::isfinite(rho) && std::isfinite(p);
@@ -424,7 +426,7 @@ PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContext& c, std::size_t i
                                             const Vec2* G, const Mat2* grad_v, const Vec2* lap_v,
                                             const Vec2* v_start, const StageParams& s, real* rc, Vec2* v) {
   rc[i] = rhie_chow_at(c, i, p, rho, G);
-  if (i < c.nb) return;
+  if (c.kind[i] != Kind::Fluid) return;  // surfaces move with their solid; buffers are set by their boundary
   v[i] = momentum_stage(v_start[i], G[i], lap_v[i], s);
   if (s.kappa > 0) v[i] += (s.dt * s.kappa) * odd_even_velocity_at(c, i, grad_v, lap_v[i]);
 }

@@ -1,0 +1,330 @@
+// Open boundaries in the time step (boundary/open_boundary.hpp; docs/method-notes.md, "Open
+// boundaries"): the buffer particles' fields from the fluid's mirrored fit, their motion, and
+// the conversion, deletion and creation of particles where the fluid enters and leaves. CPU
+// only (the CUDA backend refuses cases with open boundaries).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "particula/fluid/fluid.hpp"
+#include "particula/solver/solver.hpp"
+
+namespace particula {
+
+namespace {
+
+/// Coefficients of a linear moving-least-squares fit f(x) ~ a0 + a1 . (x - x_g) over data
+/// points at offsets d_j = (x_j - x_g)/h with weights w_j: the fitted value at offset e is
+/// sum_j c_j f_j with c_j = w_j p(d_j) . M^-1 p(e), p(d) = (1, d.x, d.y), M = sum_j w_j p p^T.
+/// Solves M y = p(e) for the two targets e (the ghost point, 0, and the buffer particle) by a
+/// Cholesky factorisation; false when a pivot loses all but 1e-6 of its diagonal entry (the
+/// points do not determine a plane: too few of them, or all on one line).
+bool linear_fit_targets(const std::vector<Vec2>& d, const std::vector<real>& w, Vec2 e, real y0[3], real y1[3]) {
+  real M[3][3] = {};
+  for (std::size_t j = 0; j < d.size(); ++j) {
+    const real p[3] = {1, d[j].x, d[j].y};
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c <= r; ++c) M[r][c] += w[j] * p[r] * p[c];
+  }
+  for (int c = 0; c < 3; ++c) {
+    real s = M[c][c];
+    for (int k = 0; k < c; ++k) s -= M[c][k] * M[c][k];
+    if (!(M[c][c] > 0) || !(s > 1e-6 * M[c][c])) return false;
+    M[c][c] = std::sqrt(s);
+    for (int r = c + 1; r < 3; ++r) {
+      real t = M[r][c];
+      for (int k = 0; k < c; ++k) t -= M[r][k] * M[c][k];
+      M[r][c] = t / M[c][c];
+    }
+  }
+  const auto solve = [&](const real rhs[3], real y[3]) {
+    for (int r = 0; r < 3; ++r) {
+      real s = rhs[r];
+      for (int c = 0; c < r; ++c) s -= M[r][c] * y[c];
+      y[r] = s / M[r][r];
+    }
+    for (int r = 2; r >= 0; --r) {
+      real s = y[r];
+      for (int c = r + 1; c < 3; ++c) s -= M[c][r] * y[c];
+      y[r] = s / M[r][r];
+    }
+  };
+  const real at_ghost[3] = {1, 0, 0}, at_particle[3] = {1, e.x, e.y};
+  solve(at_ghost, y0);
+  solve(at_particle, y1);
+  return true;
+}
+
+}  // namespace
+
+int Solver::open_zone_of(Vec2 x, Kind k) const {
+  int best = -1;
+  real best_d = 0;
+  const bool inlet = k == Kind::Inlet;
+  for (std::size_t z = 0; z < prm_.open.size(); ++z) {
+    const OpenZone& oz = prm_.open[z];
+    if (oz.inlet != inlet) continue;
+    const real s = open_along(oz, x), tol = 1e-9 * oz.width;
+    if (s < -tol || s > oz.width + tol) continue;
+    const real d = std::fabs(open_depth(oz, x));
+    if (best < 0 || d < best_d) {
+      best = static_cast<int>(z);
+      best_d = d;
+    }
+  }
+  return best;
+}
+
+real Solver::inlet_speed(std::size_t zone, real s, real t) const {
+  const OpenSpec& o = prm_.open_specs[zone];
+  const real W = prm_.open[zone].width;
+  real u = o.velocity;
+  switch (o.profile) {
+    case InletProfile::Uniform: break;
+    case InletProfile::Parabolic: u = 4 * o.velocity * s * (W - s) / (W * W); break;
+    case InletProfile::Table: {
+      const std::vector<Vec2>& tab = o.table;  // (s, u), s increasing (checked at load)
+      if (s <= tab.front().x) {
+        u = tab.front().y;
+      } else if (s >= tab.back().x) {
+        u = tab.back().y;
+      } else {
+        std::size_t k = 1;
+        while (tab[k].x < s) ++k;
+        const real f = (s - tab[k - 1].x) / (tab[k].x - tab[k - 1].x);
+        u = (1 - f) * tab[k - 1].y + f * tab[k].y;
+      }
+      break;
+    }
+  }
+  return u * inlet_ramp(t, o.ramp_time);
+}
+
+void Solver::open_ghost_weights() {
+  buffer_.clear();
+  buffer_zone_.clear();
+  ghost_start_.assign(1, 0);
+  ghost_j_.clear();
+  ghost_val_.clear();
+  ghost_lin_.clear();
+  if (prm_.open.empty()) return;
+  const std::size_t n = P_.size(), nb = P_.n_boundary;
+  for (std::size_t i = nb; i < n; ++i)
+    if (is_buffer(P_.kind[i])) {
+      buffer_.push_back(static_cast<std::uint32_t>(i));
+      buffer_zone_.push_back(open_zone_of(P_.x[i], P_.kind[i]));
+    }
+  // The grid was binned with this step's positions by the neighbour search; the ghost point's
+  // candidates are the particles of the 3x3 cells round it, in the grid's fixed order.
+  const GridGeometry& g = grid_.geometry();
+  const std::uint32_t* sorted = grid_.sorted().data();
+  const std::uint32_t* cell_start = grid_.cell_start().data();
+  const real h = prm_.h, h2 = h * h;
+  std::vector<std::uint32_t> js;
+  std::vector<Vec2> d;
+  std::vector<real> w;
+  for (std::size_t k = 0; k < buffer_.size(); ++k) {
+    const std::size_t b = buffer_[k];
+    js.clear();
+    d.clear();
+    w.clear();
+    if (buffer_zone_[k] >= 0) {
+      const OpenZone& z = prm_.open[static_cast<std::size_t>(buffer_zone_[k])];
+      const Vec2 xg = open_ghost_point(z, P_.x[b]);
+      int first[9], last[9];
+      const int runs = g.neighbor_cell_runs(g.cell_index(xg), first, last);
+      for (int r = 0; r < runs; ++r)
+        for (std::uint32_t s = cell_start[first[r]]; s < cell_start[last[r] + 1]; ++s) {
+          const std::uint32_t j = sorted[s];
+          if (P_.kind[j] != Kind::Fluid) continue;  // the fit reads the fluid only (Tafuni et al. 2018)
+          const Vec2 rj = domain_.separation(P_.x[j], xg);
+          const real r2 = norm2(rj);
+          if (!(r2 < h2)) continue;
+          js.push_back(j);
+          d.push_back(rj / h);
+          w.push_back(vol_[j] * kernel_.W(std::sqrt(r2)));
+        }
+      real y0[3], y1[3];
+      const Vec2 e = (P_.x[b] - xg) / h;
+      if (linear_fit_targets(d, w, e, y0, y1)) {
+        for (std::size_t q = 0; q < js.size(); ++q) {
+          ghost_j_.push_back(js[q]);
+          ghost_val_.push_back(w[q] * (y0[0] + y0[1] * d[q].x + y0[2] * d[q].y));
+          ghost_lin_.push_back(w[q] * (y1[0] + y1[1] * d[q].x + y1[2] * d[q].y));
+        }
+      } else {
+        // Too few fluid particles round the ghost point for a plane: their Shepard mean.
+        ++counters_.open_fit_fallback;
+        real sw = 0;
+        for (const real wq : w) sw += wq;
+        for (std::size_t q = 0; q < js.size() && sw > 0; ++q) {
+          ghost_j_.push_back(js[q]);
+          ghost_val_.push_back(w[q] / sw);
+          ghost_lin_.push_back(w[q] / sw);
+        }
+      }
+    }
+    ghost_start_.push_back(static_cast<std::uint32_t>(ghost_j_.size()));
+  }
+}
+
+void Solver::open_min_distance() {
+  if (prm_.open.empty() || dev_) return;
+  const std::size_t n = P_.size();
+  real dmin2 = std::numeric_limits<real>::infinity();
+#pragma omp parallel for schedule(static) reduction(min : dmin2)
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool buffer_i = is_buffer(P_.kind[i]);
+    for (std::uint32_t k = nl_.start[i]; k < nl_.start[i + 1]; ++k) {
+      const std::uint32_t j = nl_.j[k];
+      if (buffer_i && is_buffer(P_.kind[j])) continue;
+      dmin2 = std::min(dmin2, norm2(domain_.separation(P_.x[i], P_.x[j])));
+    }
+  }
+  nl_.min_distance = std::sqrt(dmin2);
+}
+
+void Solver::open_velocities(real t_mid) {
+  for (std::size_t k = 0; k < buffer_.size(); ++k) {
+    if (buffer_zone_[k] < 0) continue;
+    const std::size_t b = buffer_[k], zi = static_cast<std::size_t>(buffer_zone_[k]);
+    const OpenZone& z = prm_.open[zi];
+    if (z.inlet) {
+      P_.v[b] = inlet_speed(zi, open_along(z, P_.x[b]), t_mid) * z.n;
+      continue;
+    }
+    // Outlet: the fluid's velocity at the ghost point (an even mirror, dV/dn = 0 at the line).
+    if (ghost_start_[k] == ghost_start_[k + 1]) continue;
+    Vec2 v;
+    for (std::uint32_t q = ghost_start_[k]; q < ghost_start_[k + 1]; ++q) v += ghost_val_[q] * P_.v[ghost_j_[q]];
+    P_.v[b] = v;
+  }
+}
+
+void Solver::open_pressures() {
+  for (std::size_t k = 0; k < buffer_.size(); ++k) {
+    if (buffer_zone_[k] < 0 || ghost_start_[k] == ghost_start_[k + 1]) continue;
+    const std::size_t b = buffer_[k];
+    const OpenZone& z = prm_.open[static_cast<std::size_t>(buffer_zone_[k])];
+    real p_ghost = 0, p_lin = 0;
+    for (std::uint32_t q = ghost_start_[k]; q < ghost_start_[k + 1]; ++q) {
+      const real pj = P_.p[ghost_j_[q]];
+      p_ghost += ghost_val_[q] * pj;
+      p_lin += ghost_lin_[q] * pj;
+    }
+    // Inlet: the fluid's pressure continued linearly to the particle; outlet: the line's pressure.
+    P_.p[b] = z.inlet ? p_lin : outlet_buffer_pressure(z.pressure, p_ghost);
+    P_.rho[b] = density_from_pressure(P_.p[b], prm_.rho0, prm_.c, prm_.p0);
+  }
+}
+
+void Solver::open_move(real dt) {
+  for (std::size_t k = 0; k < buffer_.size(); ++k) {
+    if (buffer_zone_[k] < 0) continue;
+    const std::size_t b = buffer_[k];
+    const OpenZone& z = prm_.open[static_cast<std::size_t>(buffer_zone_[k])];
+    real vn = dot(P_.v[b], z.n);
+    // An outlet's buffer only moves out (a vortex crossing the line cannot pull it back in).
+    if (!z.inlet) vn = std::min(vn, real(0));
+    P_.x[b] += (dt * vn) * z.n;
+  }
+}
+
+void Solver::open_limit_shifting() {
+  if (prm_.open.empty()) return;
+  const std::size_t n = P_.size(), nb = P_.n_boundary;
+  const real h = prm_.h;
+  // A normal shift next to the regular buffer would open a void behind an inlet, and one across
+  // a line would move mass past it unaccounted; the tangential part still mixes the fluid.
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = nb; i < n; ++i) {
+    if (P_.kind[i] != Kind::Fluid) continue;
+    for (const OpenZone& z : prm_.open) {
+      const real xi = open_depth(z, P_.x[i]), s = open_along(z, P_.x[i]);
+      if (xi < h && s > -h && s < z.width + h) shift_dir_[i] -= dot(shift_dir_[i], z.n) * z.n;
+    }
+  }
+}
+
+void Solver::open_transfer() {
+  if (prm_.open.empty()) return;
+  const std::size_t n = P_.size(), nb = P_.n_boundary;
+  struct Created {
+    Vec2 x, v;
+    real p, rho, m;
+  };
+  std::vector<Created> created;
+  std::vector<unsigned char> keep(n, 1);
+  for (std::size_t i = nb; i < n; ++i) {
+    const Kind k = P_.kind[i];
+    const Vec2 x = P_.x[i];
+    if (k == Kind::Fluid) {
+      for (std::size_t z = 0; z < prm_.open.size(); ++z) {
+        if (!beyond_open_line(prm_.open[z], x)) continue;
+        OpenFlux& f = open_flux_[z];
+        if (prm_.open[z].inlet) {  // fluid leaving through an inlet: removed and counted
+          keep[i] = 0;
+          f.backflow_mass += P_.m[i];
+          ++f.deleted;
+        } else {  // fluid leaving through an outlet joins its buffer
+          P_.kind[i] = Kind::Outlet;
+          f.mass += P_.m[i];
+        }
+        break;
+      }
+      continue;
+    }
+    if (!is_buffer(k)) continue;
+    const int zi = open_zone_of(x, k);
+    if (zi < 0) {  // cannot happen for a particle that moves along its zone's normal; removed if it does
+      keep[i] = 0;
+      continue;
+    }
+    const OpenZone& z = prm_.open[static_cast<std::size_t>(zi)];
+    OpenFlux& f = open_flux_[static_cast<std::size_t>(zi)];
+    const real xi = open_depth(z, x);
+    if (k == Kind::Inlet && xi >= 0) {
+      // The front of a column entered the fluid: it becomes fluid, and a new particle with its
+      // fields takes the back of the column, one buffer depth behind (the column keeps its spacing).
+      P_.kind[i] = Kind::Fluid;
+      f.mass += P_.m[i];
+      ++f.created;
+      created.push_back({x - z.depth * z.n, P_.v[i], P_.p[i], P_.rho[i], z.mass});
+    } else if (k == Kind::Outlet && xi < -z.depth) {
+      keep[i] = 0;
+      ++f.deleted;
+    }
+  }
+  // Stable compaction of the fluid block, then the created particles at its end: the order is a
+  // function of the state alone, so a resumed run repeats it exactly.
+  std::size_t to = nb;
+  for (std::size_t i = nb; i < n; ++i) {
+    if (!keep[i]) continue;
+    if (to != i) {
+      P_.x[to] = P_.x[i];
+      P_.v[to] = P_.v[i];
+      P_.rho[to] = P_.rho[i];
+      P_.p[to] = P_.p[i];
+      P_.m[to] = P_.m[i];
+      P_.kind[to] = P_.kind[i];
+      P_.group[to] = P_.group[i];
+      P_.id[to] = P_.id[i];
+    }
+    ++to;
+  }
+  if (to == n && created.empty()) return;
+  P_.resize(to + created.size());
+  for (const Created& c : created) {
+    P_.x[to] = c.x;
+    P_.v[to] = c.v;
+    P_.p[to] = c.p;
+    P_.rho[to] = c.rho;
+    P_.m[to] = c.m;
+    P_.kind[to] = Kind::Inlet;
+    P_.group[to] = -1;
+    P_.id[to] = P_.next_id++;
+    ++to;
+  }
+}
+
+}  // namespace particula
