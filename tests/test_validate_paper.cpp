@@ -160,7 +160,7 @@ TEST(ValidationPaperChecks, SuiteHasThePaperCasesWithCoarseQuickLevels) {
   std::vector<std::string> names;
   for (const auto& e : validation_entries()) {
     if (!e.paper) continue;
-    names.push_back(e.name);
+    if (e.group == ValidationGroup::Paper) names.push_back(e.name);
     // the quick level loads (passes the case checks, e.g. 10 particles across every body) and
     // is coarser than the shipped (paper) level
     const Case shipped = load_case(fs::path(PARTICULA_SOURCE_DIR) / e.case_file);
@@ -170,6 +170,16 @@ TEST(ValidationPaperChecks, SuiteHasThePaperCasesWithCoarseQuickLevels) {
   }
   EXPECT_EQ(names, (std::vector<std::string>{"shear_migration", "falling_cylinder", "two_cylinders_shear", "dkt",
                                              "ellipse_obstacle"}));
+}
+
+TEST(ValidationPaperChecks, TheBenchmarkGroupHasTheDfgCaseWithACoarseQuickLevel) {
+  std::vector<std::string> names;
+  for (const auto& e : validation_entries())
+    if (e.group == ValidationGroup::Benchmark) names.push_back(e.name);
+  EXPECT_EQ(names, std::vector<std::string>{"dfg_2d1"});
+  ValidateOptions plain;
+  for (const auto& e : validation_entries())
+    if (e.group == ValidationGroup::Benchmark) EXPECT_TRUE(entry_selected(e, plain)) << "run by a plain validate";
 }
 
 // Evaluates an existing run directory (manual use: VALIDATE_RUN=dir VALIDATE_CASE=name).

@@ -78,11 +78,11 @@ int main(int argc, char** argv) {
   particula::ValidateOptions validate_opt;
   auto* validate = app.add_subcommand(
       "validate",
-      "Run the validation cases (exact solutions and the paper's five body cases; the robustness cases with "
-      "--group robustness) against their references and write DIR/report.md (exit 3 on a fail)");
+      "Run the validation cases (exact solutions, the paper's five body cases and the DFG benchmark; the robustness "
+      "cases with --group robustness) against their references and write DIR/report.md (exit 3 on a fail)");
   validate->add_flag("--quick", validate_opt.quick,
-                     "Analytic and robustness cases at the shipped resolution (else twice as fine); paper cases at a "
-                     "coarse level (else the paper's resolution)");
+                     "Analytic and robustness cases at the shipped resolution (else twice as fine); paper and benchmark "
+                     "cases at a coarse level (else as shipped)");
   validate->add_option("--out", validate_opt.out_dir, "Output directory (default runs/validate)");
   validate->add_option("--threads", validate_opt.threads, "OpenMP threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
@@ -92,9 +92,9 @@ int main(int argc, char** argv) {
   validate->add_option("--case", validate_opt.only, "Run only this validation case, of any group (repeatable)");
   std::vector<std::string> validate_groups;
   validate->add_option("--group", validate_groups,
-                       "Run only this group: analytic, paper or robustness (repeatable; default: analytic and "
-                       "paper, the robustness cases only when asked for)")
-      ->check(CLI::IsMember({"analytic", "paper", "robustness"}));
+                       "Run only this group: analytic, paper, benchmark or robustness (repeatable; default: analytic, "
+                       "paper and benchmark, the robustness cases only when asked for)")
+      ->check(CLI::IsMember({"analytic", "paper", "benchmark", "robustness"}));
   validate->add_flag("--quiet", validate_opt.quiet, "Only the final line");
   validate->footer(footer("  particula validate --quick --out runs/validate\n"
                           "  particula validate --case couette --case falling_cylinder --quick\n"
@@ -139,9 +139,10 @@ int main(int argc, char** argv) {
     if (*info) return particula::info_command(info_case, info_overrides, !info_no_timing);
     if (*validate) {
       for (const auto& g : validate_groups)
-        validate_opt.groups.push_back(g == "analytic" ? particula::ValidationGroup::Analytic
-                                      : g == "paper"  ? particula::ValidationGroup::Paper
-                                                      : particula::ValidationGroup::Robustness);
+        validate_opt.groups.push_back(g == "analytic"    ? particula::ValidationGroup::Analytic
+                                      : g == "paper"     ? particula::ValidationGroup::Paper
+                                      : g == "benchmark" ? particula::ValidationGroup::Benchmark
+                                                         : particula::ValidationGroup::Robustness);
       return particula::validate_command(validate_opt);
     }
     if (*generate) return particula::generate_command(generate_seed, generate_out);

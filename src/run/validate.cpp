@@ -443,6 +443,7 @@ std::vector<ValidationEntry> validation_entries() {
   add("dkt", true, {"resolution.d0=2e-4"}, check_dkt);
   // 7.5 at the coarsest level the body-size check allows (10 particles across the ellipse).
   add("ellipse_obstacle", true, {"resolution.d0=2e-4", "time.end=2.5"}, check_ellipse_obstacle);
+  for (auto& e : open_boundary_entries()) v.push_back(std::move(e));
   for (auto& e : robustness_entries()) v.push_back(std::move(e));
   return v;
 }

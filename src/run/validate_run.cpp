@@ -35,6 +35,7 @@ const char* group_name(ValidationGroup g) {
     case ValidationGroup::Analytic: return "analytic";
     case ValidationGroup::Paper: return "paper";
     case ValidationGroup::Robustness: return "robustness";
+    case ValidationGroup::Benchmark: return "benchmark";
   }
   return "";
 }
@@ -249,7 +250,8 @@ namespace {
 /// The error for an unknown `--case NAME`: the valid names, by group.
 std::string unknown_case_message(const std::string& name, const std::vector<ValidationEntry>& entries) {
   std::string text = fmt::format("--case {}: no validation case of that name; the cases are:", name);
-  for (const ValidationGroup g : {ValidationGroup::Analytic, ValidationGroup::Paper, ValidationGroup::Robustness}) {
+  for (const ValidationGroup g : {ValidationGroup::Analytic, ValidationGroup::Paper, ValidationGroup::Benchmark,
+                                  ValidationGroup::Robustness}) {
     std::string names;
     for (const auto& e : entries)
       if (e.group == g) names += (names.empty() ? "" : ", ") + e.name;

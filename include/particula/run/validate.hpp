@@ -1,6 +1,7 @@
 // `particula validate`: runs the validation cases and compares each with its reference,
-// writing DIR/report.md. The suite is a list of entries in three groups: the analytic cases, the
-// paper's body cases (method.md section 12, reference data in reference/) and the robustness
+// writing DIR/report.md. The suite is a list of entries in four groups: the analytic cases, the
+// paper's body cases (method.md section 12, reference data in reference/), the benchmarks (the DFG
+// flow past a cylinder, reference/schaefer_turek1996_dfg.csv) and the robustness
 // cases (cases/robustness/, issue 14: untuned cases at default numerics, checked for physical
 // sanity rather than against a published curve); a new benchmark is one more entry in
 // validation_entries().
@@ -29,9 +30,9 @@ struct ValidationCheck {
 };
 
 /// The groups of `particula validate --group`.
-enum class ValidationGroup { Analytic, Paper, Robustness };
+enum class ValidationGroup { Analytic, Paper, Robustness, Benchmark };
 
-/// The group's name on the command line ("analytic", "paper", "robustness").
+/// The group's name on the command line ("analytic", "paper", "robustness", "benchmark").
 const char* group_name(ValidationGroup g);
 
 /// One validation case: a shipped case file run at the quick or the default level, and how to
@@ -98,6 +99,17 @@ std::vector<ValidationCheck> check_dkt(const std::filesystem::path& run_dir, con
 /// lines; the paper's description is qualitative, so nothing here fails.
 std::vector<ValidationCheck> check_ellipse_obstacle(const std::filesystem::path& run_dir, const Case& c);
 
+// Open boundaries (validate_open.cpp).
+/// Poiseuille flow from an inlet to an outlet: the profile probe's last rows against the
+/// inflow's parabola (RMS < 1 % of the peak), the flow rate through it (1 %), dp/dx along the
+/// centre line over the middle 60 % (3 %), and the fluid mass against the fluxes (1e-12).
+std::vector<ValidationCheck> check_poiseuille_open(const std::filesystem::path& run_dir, const Case& c);
+/// DFG 2D-1: C_D and the pressure difference across the cylinder (means over the last third of
+/// the run) against reference/schaefer_turek1996_dfg.csv, C_L reported, the mass balance.
+std::vector<ValidationCheck> check_dfg_2d1(const std::filesystem::path& run_dir, const Case& c);
+/// The entries of the open-boundary cases (poiseuille_open: analytic; dfg_2d1: benchmark).
+std::vector<ValidationEntry> open_boundary_entries();
+
 struct ValidateOptions {
   bool quick = false;  // analytic cases at the shipped resolution, paper cases coarse; default:
                        // analytic cases twice as fine, paper cases at the paper's resolution
@@ -108,7 +120,7 @@ struct ValidateOptions {
   /// --set overrides applied to every case after its level's own (e.g. to try a numerics value
   /// on the whole suite); written into the report.
   std::vector<std::string> sets;
-  /// The groups to run (empty: analytic and paper, the suite before the robustness group was
+  /// The groups to run (empty: analytic, paper and benchmark, the suite before the robustness group was
   /// added; robustness cases are run only when asked for, by group or by --case).
   std::vector<ValidationGroup> groups;
 };
