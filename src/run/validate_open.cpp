@@ -187,6 +187,103 @@ std::vector<ValidationCheck> check_dfg_2d1(const fs::path& run_dir, const Case& 
   return out;
 }
 
+namespace {
+
+/// A periodic signal q(t) fitted by least squares with a mean and harmonics 1..3 of frequency f:
+/// the fit's largest value over one period (a maximum that the pressure noise of single samples
+/// does not inflate).
+double periodic_fit_max(const std::vector<double>& t, const std::vector<double>& q, double f) {
+  constexpr int H = 3, N = 2 * H + 1;
+  double A[N][N + 1] = {};
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    double b[N];
+    b[0] = 1;
+    for (int k = 1; k <= H; ++k) {
+      b[2 * k - 1] = std::cos(2 * M_PI * k * f * t[i]);
+      b[2 * k] = std::sin(2 * M_PI * k * f * t[i]);
+    }
+    for (int r = 0; r < N; ++r) {
+      for (int c = 0; c < N; ++c) A[r][c] += b[r] * b[c];
+      A[r][N] += b[r] * q[i];
+    }
+  }
+  for (int c = 0; c < N; ++c) {  // Gaussian elimination with partial pivoting
+    int piv = c;
+    for (int r = c + 1; r < N; ++r)
+      if (std::fabs(A[r][c]) > std::fabs(A[piv][c])) piv = r;
+    for (int k = 0; k <= N; ++k) std::swap(A[c][k], A[piv][k]);
+    for (int r = 0; r < N; ++r) {
+      if (r == c || A[c][c] == 0) continue;
+      const double m = A[r][c] / A[c][c];
+      for (int k = c; k <= N; ++k) A[r][k] -= m * A[c][k];
+    }
+  }
+  double coef[N];
+  for (int r = 0; r < N; ++r) coef[r] = A[r][r] != 0 ? A[r][N] / A[r][r] : 0;
+  double best = -1e300;
+  for (int s = 0; s < 1000; ++s) {
+    const double tt = s / (1000 * f);
+    double v = coef[0];
+    for (int k = 1; k <= H; ++k)
+      v += coef[2 * k - 1] * std::cos(2 * M_PI * k * f * tt) + coef[2 * k] * std::sin(2 * M_PI * k * f * tt);
+    best = std::max(best, v);
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<ValidationCheck> check_dfg_2d2(const fs::path& run_dir, const Case& c) {
+  std::vector<ValidationCheck> out;
+  const io::CsvTable k = io::read_csv(run_dir / "coefficients.csv");
+  const std::size_t it = k.column_index("time"), icd = k.column_index("cd"), icl = k.column_index("cl");
+  const double t_end = k.rows.back()[it], from = t_end / 2;
+  std::vector<double> t, cd, cl;
+  for (const auto& r : k.rows)
+    if (r[it] >= from) t.push_back(r[it]), cd.push_back(r[icd]), cl.push_back(r[icl]);
+  if (t.size() < 20) throw io::IoError(fmt::format("'{}': too few rows after t = {}", k.source.string(), from));
+  // The shedding frequency from the upward zero crossings of C_L about its mean (a 3-sample
+  // running mean against the noise), over the second half of the run.
+  double mean = 0;
+  for (const double v : cl) mean += v;
+  mean /= static_cast<double>(cl.size());
+  std::vector<double> s(cl.size());
+  for (std::size_t i = 0; i < cl.size(); ++i) {
+    const std::size_t a = i == 0 ? 0 : i - 1, b = std::min(cl.size() - 1, i + 1);
+    s[i] = (cl[a] + cl[i] + cl[b]) / 3 - mean;
+  }
+  std::vector<double> up;
+  for (std::size_t i = 1; i < s.size(); ++i)
+    if (s[i - 1] < 0 && s[i] >= 0) up.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-s[i - 1]) / (s[i] - s[i - 1]));
+  const auto [st_lo, st_hi] = dfg_range("2D-2", "strouhal_number");
+  const auto [cd_lo, cd_hi] = dfg_range("2D-2", "max_drag_coefficient");
+  const auto [cl_lo, cl_hi] = dfg_range("2D-2", "max_lift_coefficient");
+  const double U = norm(c.reference_velocity), D = c.reference_length;
+  if (up.size() < 3) {
+    ValidationCheck none;
+    none.quantity = "vortex shedding (upward zero crossings of C_L in the second half of the run)";
+    none.value = static_cast<double>(up.size());
+    none.shown = fmt::format("{} crossings", up.size());
+    none.reference = "periodic shedding";
+    none.tolerance = "at least 3";
+    out.push_back(none);
+    return out;
+  }
+  const double f = static_cast<double>(up.size() - 1) / (up.back() - up.front()), st = f * D / U;
+  const bool fine = c.d0 <= 0.1 / 20 * (1 + 1e-9);
+  out.push_back(relative_check(fmt::format("Strouhal number D f / U_mean ({} periods)", up.size() - 1), st,
+                               0.5 * (st_lo + st_hi), fmt::format("{} .. {} (Schaefer & Turek 1996)", st_lo, st_hi),
+                               fine ? 0.03 : 0.05));
+  out.push_back(relative_check("largest C_D (fit with 3 harmonics of f over the second half)",
+                               periodic_fit_max(t, cd, f), 0.5 * (cd_lo + cd_hi),
+                               fmt::format("{} .. {} (Schaefer & Turek 1996)", cd_lo, cd_hi), fine ? 0.03 : 0.06));
+  out.push_back(relative_check("largest C_L (fit with 3 harmonics of f over the second half)",
+                               periodic_fit_max(t, cl, f), 0.5 * (cl_lo + cl_hi),
+                               fmt::format("{} .. {} (Schaefer & Turek 1996)", cl_lo, cl_hi), fine ? 0.05 : 0.10));
+  out.push_back(mass_balance_check(run_dir, c));
+  return out;
+}
+
 std::vector<ValidationEntry> open_boundary_entries() {
   std::vector<ValidationEntry> v;
   ValidationEntry p;
@@ -203,6 +300,11 @@ std::vector<ValidationEntry> open_boundary_entries() {
   d.evaluate = check_dfg_2d1;
   d.paper = true;
   d.quick_overrides = {"resolution.d0=0.01"};
+  v.push_back(d);
+  // 2D-2: as shipped D/20 (about an hour on 2 cores); --quick at D/10.
+  d.name = "dfg_2d2";
+  d.case_file = "cases/dfg_2d2.toml";
+  d.evaluate = check_dfg_2d2;
   v.push_back(std::move(d));
   return v;
 }

@@ -120,9 +120,9 @@ void Solver::open_ghost_weights() {
   const std::uint32_t* sorted = grid_.sorted().data();
   const std::uint32_t* cell_start = grid_.cell_start().data();
   const real h = prm_.h, h2 = h * h;
-  std::vector<std::uint32_t> js;
-  std::vector<Vec2> d;
-  std::vector<real> w;
+  std::vector<std::uint32_t>& js = fit_j_;
+  std::vector<Vec2>& d = fit_d_;
+  std::vector<real>& w = fit_w_;
   for (std::size_t k = 0; k < buffer_.size(); ++k) {
     const std::size_t b = buffer_[k];
     js.clear();
@@ -249,12 +249,10 @@ void Solver::open_limit_shifting() {
 void Solver::open_transfer() {
   if (prm_.open.empty()) return;
   const std::size_t n = P_.size(), nb = P_.n_boundary;
-  struct Created {
-    Vec2 x, v;
-    real p, rho, m;
-  };
-  std::vector<Created> created;
-  std::vector<unsigned char> keep(n, 1);
+  std::vector<CreatedParticle>& created = created_;
+  created.clear();
+  std::vector<unsigned char>& keep = keep_;
+  keep.assign(n, 1);
   for (std::size_t i = nb; i < n; ++i) {
     const Kind k = P_.kind[i];
     const Vec2 x = P_.x[i];
@@ -314,7 +312,7 @@ void Solver::open_transfer() {
   }
   if (to == n && created.empty()) return;
   P_.resize(to + created.size());
-  for (const Created& c : created) {
+  for (const CreatedParticle& c : created) {
     P_.x[to] = c.x;
     P_.v[to] = c.v;
     P_.p[to] = c.p;

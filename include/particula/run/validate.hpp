@@ -107,7 +107,11 @@ std::vector<ValidationCheck> check_poiseuille_open(const std::filesystem::path& 
 /// DFG 2D-1: C_D and the pressure difference across the cylinder (means over the last third of
 /// the run) against reference/schaefer_turek1996_dfg.csv, C_L reported, the mass balance.
 std::vector<ValidationCheck> check_dfg_2d1(const std::filesystem::path& run_dir, const Case& c);
-/// The entries of the open-boundary cases (poiseuille_open: analytic; dfg_2d1: benchmark).
+/// DFG 2D-2: the Strouhal number from the upward zero crossings of C_L over the second half of
+/// the run, and the largest C_D and C_L of a fit with three harmonics of that frequency, against
+/// the published ranges; the mass balance.
+std::vector<ValidationCheck> check_dfg_2d2(const std::filesystem::path& run_dir, const Case& c);
+/// The entries of the open-boundary cases (poiseuille_open: analytic; dfg_2d1, dfg_2d2: benchmark).
 std::vector<ValidationEntry> open_boundary_entries();
 
 struct ValidateOptions {

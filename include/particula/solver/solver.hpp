@@ -408,6 +408,16 @@ class Solver {
   std::vector<std::uint32_t> ghost_start_, ghost_j_;
   std::vector<real> ghost_val_, ghost_lin_;
   std::vector<OpenFlux> open_flux_;
+  // scratch of the fits and the transfer (kept between steps: the step loop allocates nothing once grown)
+  std::vector<std::uint32_t> fit_j_;
+  std::vector<Vec2> fit_d_;
+  std::vector<real> fit_w_;
+  struct CreatedParticle {
+    Vec2 x, v;
+    real p, rho, m;
+  };
+  std::vector<CreatedParticle> created_;
+  std::vector<unsigned char> keep_;
 
   // reordering scratch
   std::vector<std::uint32_t> reorder_key_;
