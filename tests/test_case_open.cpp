@@ -264,6 +264,11 @@ TEST(CaseOpen, BodiesClearOfOpenBoundaries) {
   expect_error(kChannel + fmt::format(fmt::runtime(body), "0.0185"), "body[0].center", "center = [0.0185",
                "from outlet 'out' (outlet[0])");
   EXPECT_NO_THROW(load(kChannel + fmt::format(fmt::runtime(body), "0.01")));
+  // With the momentum loads (the default) the band of 5 h = 1.3e-3 m round the body must stay
+  // clear of the buffer too; with the paper's loads L_b + h + delta_c is enough.
+  const std::string near = kChannel + fmt::format(fmt::runtime(body), "0.0021");  // gap 1.1e-3 m
+  expect_error(near, "body[0].center", "center = [0.0021", "the band of the momentum loads");
+  EXPECT_NO_THROW(load(near + "\n[numerics]\nforce = \"paper\"\n"));
 }
 
 // j. Only with single-layer walls.

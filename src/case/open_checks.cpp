@@ -17,6 +17,7 @@
 
 #include "body_outline.hpp"
 #include "internal.hpp"
+#include "particula/solver/momentum_loads.hpp"
 
 namespace particula::case_detail {
 namespace {
@@ -318,7 +319,11 @@ void check_open_bodies(const Case& c, const LoadContext& ctx) {
   for (std::size_t k = 0; k < c.bodies.size(); ++k) {
     const Outline body(c.bodies[k]);
     for (const Open& o : all) {
-      const real depth = buffer_depth(c, *o.spec), need = depth + c.h() + delta_c;
+      const real depth = buffer_depth(c, *o.spec);
+      // With the momentum loads the band of kLoadBandReach h round the body must stay clear of the
+      // buffer too: its momentum balance needs every fluid particle of the band.
+      const real band = c.force == ForceModel::Momentum ? kLoadBandReach * c.h() : 0.0;
+      const real need = std::max(depth + c.h() + delta_c, band);
       real gap = std::numeric_limits<real>::infinity();
       for (const Vec2 shift : shifts)
         gap = std::min(gap, segment_distance(body.center + shift, o.spec->from, o.spec->to) - body.bound);
@@ -327,10 +332,15 @@ void check_open_bodies(const Case& c, const LoadContext& ctx) {
           place_key(c, k),
           fmt::format("{} comes {:.3g} m from {} at t = 0 (its bounding circle, of radius {:.6g} m about {}), closer "
                       "than L_b + h + delta_c = {:.6g} m (buffer depth L_b = {} d0 = {:.6g} m, h = {:.6g} m, the "
-                      "contact distance delta_c = {:.6g} m): the buffer's fields are set from the fluid beside the "
+                      "contact distance delta_c = {:.6g} m){}: the buffer's fields are set from the fluid beside the "
                       "line, which the body would cut off; move the body away from the open boundary",
                       body_text(c.bodies[k]), std::max(gap, 0.0), o.text(), body.bound, vec(body.center), need,
-                      c.open_layers(*o.spec), depth, c.h(), delta_c));
+                      c.open_layers(*o.spec), depth, c.h(), delta_c,
+                      band > depth + c.h() + delta_c
+                          ? fmt::format(", and the band of the momentum loads (numerics.force = \"momentum\") reaches "
+                                        "{:.6g} m = {} h from the body, which must not reach the buffer",
+                                        band, kLoadBandReach)
+                          : std::string()));
     }
   }
 }

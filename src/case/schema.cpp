@@ -470,7 +470,9 @@ std::vector<SectionSpec> make_sections() {
                    "the end of a wall; no wall runs along it and no wall that slides or turns ends on it; it "
                    "overlaps no other inlet or outlet; the case has an outlet at least L_b + 2 h away (L_b = "
                    "layers d0, the larger of the two); no body comes within L_b + h + the contact distance of it "
-                   "at t = 0; numerics.boundary is \"single_layer\"."),
+                   "at t = 0, nor with numerics.force = \"momentum\" within 5 h (the band of its loads); "
+                   "numerics.boundary is \"single_layer\". Open boundaries run on the CPU backend only (for now), "
+                   "and a body must not reach one during the run."),
       open_section("outlet", &Case::outlets, OpenKind::Outlet,
                    "Outlets, one [[outlet]] table each: a straight segment on an edge of the domain where fluid "
                    "leaves at a prescribed pressure, with `layers` rows of buffer particles outside the domain "
