@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -291,4 +292,25 @@ TEST(OpenBoundary, PoiseuilleThroughAnInletAndAnOutletMatchesTheParabola) {
   EXPECT_LT(std::fabs(fluid_mass(s.particles()) - m0 - f[0].mass + f[1].mass + f[0].backflow_mass), 1e-12 * m0);
   EXPECT_EQ(s.counters().open_fit_fallback, 0);
   EXPECT_EQ(s.counters().wall_pressure_kept + s.counters().wall_pressure_extrapolated, 0);
+}
+
+TEST(OpenBoundary, ABodyThatReachesAnOpenBoundaryStopsTheRunNamingBoth) {
+  Case c = channel({"resolution.d0=5e-5"});
+  BodySpec b;
+  b.name = "ball";
+  b.shape = BodyShape::Circle;
+  b.center = {4e-3, 5e-4};  // 0.75 mm from the outlet
+  b.radius = 2.5e-4;
+  b.motion = BodyMotion::Prescribed;
+  b.velocity = {0.02, 0};  // carried towards the outlet at 2 cm/s
+  c.bodies.push_back(b);
+  Solver s = make_solver(c);
+  std::optional<Failure> f;
+  while (!f && s.time() < 0.2) f = s.step();
+  ASSERT_TRUE(f.has_value()) << "the body passed into the outlet unnoticed";
+  EXPECT_NE(f->what.find("body 'ball' has reached outlet 'out'"), std::string::npos) << f->what;
+  // it stops when the body's bounding circle comes within h of the line
+  const real gap = 5e-3 - f->position.x - b.radius;
+  EXPECT_LT(gap, s.params().h);
+  EXPECT_GT(gap, s.params().h - 0.03 * s.last_dt() - 1e-12);
 }

@@ -327,6 +327,9 @@ class Solver {
   GroupMotion group_motion(const RigidGroup& g) const;
   void reorder_fluid();
   std::optional<Failure> check_health() const;
+  /// A body whose bounding circle has come within h of an open boundary's line (bodies cannot
+  /// pass through open boundaries yet): a failure naming both.
+  std::optional<Failure> body_at_open_boundary() const;
   /// What a failure at fluid position x most likely comes from, for the exit-3 message.
   std::string likely_cause(Vec2 x) const;
   real max_speed() const;
