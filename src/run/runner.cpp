@@ -335,6 +335,19 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
                       cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.wall_pressure_extrapolated,
                       cnt.wall_pressure_extrapolated_far, cnt.normal_fallback, cnt.surface_pushed, cnt.gap_squeezed,
                       cnt.isolated_left_out));
+  if (!solver.open_flux().empty()) {
+    // what crossed the open boundaries, and the fluid mass (open_boundaries.csv over time)
+    std::string crossed;
+    for (std::size_t z = 0; z < solver.open_flux().size(); ++z) {
+      const OpenFlux& f = solver.open_flux()[z];
+      crossed += fmt::format("{}{} '{}' {:.6g} kg/m ({} created, {} deleted)", z == 0 ? "" : ", ",
+                             solver.params().open[z].inlet ? "in through" : "out through",
+                             solver.params().open_specs[z].name, f.mass, f.created, f.deleted);
+    }
+    rep.say(fmt::format("open boundaries: {}; fluid mass {:.6g} kg/m; mirrored fits that fell back to the Shepard "
+                        "mean {}",
+                        crossed, fluid_mass(solver.particles()), cnt.open_fit_fallback));
+  }
   const char* compared = c.exact == ExactSolution::SpinUp ? "velocity" : "vx";
   if (particle_error)
     rep.say(fmt::format("L2 error of the fluid particles' {} against the exact solution: {:.4f} % of the peak speed",
