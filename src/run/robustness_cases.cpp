@@ -76,25 +76,55 @@ std::vector<ValidationCheck> check_channel_cylinder(const fs::path& run_dir, con
   const Shape shape = body_shape(c.bodies.at(0));
   const double D = 2 * shape.equivalent_radius();
   const Vec2 span = c.domain_max - c.domain_min;
-  const double driving = c.rho0 * c.body_force.x * (span.x * span.y - shape.area());
-  double f_walls = 0;
-  for (const auto& w : walls) f_walls += mean_from(w.t, w.fx, from);
-  const double drag = mean_from(cyl.t, cyl.fx, from), balance = (drag + f_walls) / driving;
-  // mean fluid speed from the last snapshot
+  const double area = span.x * span.y - shape.area(), driving = c.rho0 * c.body_force.x * area;
+  // The mean fluid speed along x of a snapshot (the fluid's momentum per mass).
   const io::PvdIndex index = io::PvdIndex::read(run_dir / "particles.pvd");
-  const io::VtpData vtp = io::read_vtp(run_dir / index.entries().back().file);
-  const auto& v = vtp.array("velocity");
-  const auto& kind = vtp.int_array("kind");
-  double sum = 0;
-  std::size_t nf = 0;
-  for (std::size_t i = 0; i < vtp.num_points; ++i)
-    if (kind.data[i] == static_cast<std::int32_t>(Kind::Fluid)) sum += v.data[3 * i], ++nf;
-  const double U = nf ? sum / static_cast<double>(nf) : 0, re = U * D / c.nu;
+  const auto mean_speed = [&](const std::string& file) {
+    const io::VtpData vtp = io::read_vtp(run_dir / file);
+    const auto& v = vtp.array("velocity");
+    const auto& kind = vtp.int_array("kind");
+    double sum = 0;
+    std::size_t nf = 0;
+    for (std::size_t i = 0; i < vtp.num_points; ++i)
+      if (kind.data[i] == static_cast<std::int32_t>(Kind::Fluid)) sum += v.data[3 * i], ++nf;
+    return nf ? sum / static_cast<double>(nf) : 0.0;
+  };
+  const double U = mean_speed(index.entries().back().file), re = U * D / c.nu;
+  // The x-momentum budget between the first snapshot of the window and the last: the mean drag
+  // and wall shear (trapezoidal rule over the output rows) plus the rate of change of the fluid's
+  // momentum rho A U equal the driving rho f A. Without the momentum change (until session 17)
+  // the check failed a flow still developing: 0.938 at Re 100 over 0.42-0.7 s, while the fluid's
+  // mean speed went from 0.090 to 0.101 and back to 0.095 m/s.
+  double t_a = t_end, u_a = U;
+  for (const auto& e : index.entries())
+    if (e.time >= from - 1e-12) {
+      t_a = e.time;
+      u_a = mean_speed(e.file);
+      break;
+    }
+  const double t_b = index.entries().back().time;
+  const auto mean_between = [&](const std::vector<double>& t, const std::vector<double>& y) {
+    if (!(t_b > t_a)) return mean_from(t, y, from);
+    double integral = 0;
+    for (std::size_t i = 1; i < t.size(); ++i) {
+      const double a = std::max(t[i - 1], t_a), b = std::min(t[i], t_b);
+      if (b <= a) continue;
+      const auto at = [&](double x) { return y[i - 1] + (y[i] - y[i - 1]) * (x - t[i - 1]) / (t[i] - t[i - 1]); };
+      integral += 0.5 * (at(a) + at(b)) * (b - a);
+    }
+    return integral / (t_b - t_a);
+  };
+  double f_walls = 0;
+  for (const auto& w : walls) f_walls += mean_between(w.t, w.fx);
+  const double drag = mean_between(cyl.t, cyl.fx);
+  const double momentum_rate = t_b > t_a ? c.rho0 * area * (U - u_a) / (t_b - t_a) : 0.0;
+  const double balance = (drag + f_walls + momentum_rate) / driving;
   std::vector<ValidationCheck> out;
   const std::string win = fmt::format("t >= {:.3g} s", from);
-  out.push_back(make_check(fmt::format("(cylinder drag + wall shear) / (rho f A_fluid), mean over {}", win),
-                           balance, fmt::format("{:.4f}", balance), "1 (x momentum balance)", "within 5 %",
-                           std::fabs(balance - 1) <= 0.05));
+  out.push_back(make_check(
+      fmt::format("(cylinder drag + wall shear + d(rho A U)/dt) / (rho f A_fluid), {:.3g} to {:.3g} s", t_a, t_b),
+      balance, fmt::format("{:.4f} (momentum change {:+.4f})", balance, momentum_rate / driving),
+      "1 (x momentum balance)", "within 5 %", std::fabs(balance - 1) <= 0.05));
   out.push_back(make_check("Reynolds number U_mean D / nu (last snapshot)", re, fmt::format("{:.3g}", re),
                            fmt::format("{:g} (nominal)", re_nominal), "within a factor 1.5",
                            re >= re_nominal / 1.5 && re <= re_nominal * 1.5));
@@ -113,10 +143,24 @@ std::vector<ValidationCheck> check_channel_cylinder(const fs::path& run_dir, con
       t_last = cyl.t[k];
     }
   }
-  const double drift = (fmax - fmin) / std::fabs(drag), amplitude = 0.5 * (lmax - lmin) / std::fabs(drag);
+  const double amplitude = 0.5 * (lmax - lmin) / std::fabs(drag);
   if (!shedding) {
-    out.push_back(make_check(fmt::format("drag: (max - min) / mean over {}", win), drift,
-                             fmt::format("{:.3g}", drift), "0 (steady)", "< 2 %", drift < 0.02));
+    // Steady: the drag's drift over the window (a least-squares line through it: its change from
+    // the start to the end of the window) below 2 % of the mean, and its fluctuation about that
+    // line (the pressure noise of the weakly compressible fluid, or an oscillation) below 1 %.
+    // (max - min) / mean, used until session 17, measured the noise's range: 2.3 % at Re 10 with a
+    // drift of 0.28 % and a fluctuation of 0.41 %.
+    double st = 0, sf = 0, stt = 0, stf = 0, n = 0;
+    for (std::size_t k = 0; k < cyl.size(); ++k)
+      if (cyl.t[k] >= from) st += cyl.t[k], sf += cyl.fx[k], stt += cyl.t[k] * cyl.t[k], stf += cyl.t[k] * cyl.fx[k], n += 1;
+    const double slope = n > 1 ? (n * stf - st * sf) / (n * stt - st * st) : 0, icpt = n > 0 ? (sf - slope * st) / n : 0;
+    double res2 = 0;
+    for (std::size_t k = 0; k < cyl.size(); ++k)
+      if (cyl.t[k] >= from) res2 += std::pow(cyl.fx[k] - (icpt + slope * cyl.t[k]), 2);
+    const double drift = std::fabs(slope * (t_end - from) / drag), wobble = n > 0 ? std::sqrt(res2 / n) / std::fabs(drag) : 0;
+    out.push_back(make_check(fmt::format("drag over {}: drift of a fitted line / mean; fluctuation about it / mean", win),
+                             drift, fmt::format("{:.3g}; {:.3g} (max - min: {:.3g})", drift, wobble, (fmax - fmin) / std::fabs(drag)),
+                             "0 (steady)", "drift < 2 %, fluctuation < 1 %", drift < 0.02 && wobble < 0.01));
     out.push_back(report("lift amplitude / drag", amplitude, fmt::format("{:.3g}", amplitude)));
     return out;
   }
