@@ -323,6 +323,33 @@ std::vector<std::int64_t> buffer_counts(const Solver& s) {
   return count;
 }
 
+std::vector<io::JsonObject> open_boundary_summary(const Solver& s) {
+  std::vector<io::JsonObject> open;
+  const std::vector<std::int64_t> buffers = buffer_counts(s);
+  for (std::size_t z = 0; z < s.open_flux().size(); ++z) {
+    const OpenFlux& f = s.open_flux()[z];
+    io::JsonObject o;
+    o.set("index", z).set("name", s.params().open_specs[z].name);
+    o.set("kind", std::string(s.params().open[z].inlet ? "inlet" : "outlet"));
+    o.set("mass", f.mass).set("backflow_mass", f.backflow_mass);
+    o.set("created", f.created).set("deleted", f.deleted).set("buffer_particles", buffers[z]);
+    open.push_back(std::move(o));
+  }
+  return open;
+}
+
+std::string open_boundary_log_line(const Solver& s) {
+  std::string crossed;
+  for (std::size_t z = 0; z < s.open_flux().size(); ++z) {
+    const OpenFlux& f = s.open_flux()[z];
+    crossed += fmt::format("{}{} '{}' {:.6g} kg/m ({} created, {} deleted)", z == 0 ? "" : ", ",
+                           s.params().open[z].inlet ? "in through" : "out through", s.params().open_specs[z].name,
+                           f.mass, f.created, f.deleted);
+  }
+  return fmt::format("open boundaries: {}; fluid mass {:.6g} kg/m; mirrored fits that fell back to the Shepard mean {}",
+                     crossed, fluid_mass(s.particles()), s.counters().open_fit_fallback);
+}
+
 OpenBoundaryWriter::OpenBoundaryWriter(const std::filesystem::path& run_dir)
     : csv_(run_dir / "open_boundaries.csv", kOpenColumns, kOpenUnits) {}
 

@@ -198,19 +198,7 @@ io::JsonObject run_summary(const Session& s, const RunEnd& end, std::optional<do
   for (const auto& [name, count] : guard_events(solver.counters())) guards.set(name, count);
   summary.set("guard_events", guards);
   if (!solver.open_flux().empty()) {
-    // what crossed each open boundary (open_boundaries.csv over time), and the fluid mass now
-    std::vector<io::JsonObject> open;
-    const std::vector<std::int64_t> buffers = buffer_counts(solver);
-    for (std::size_t z = 0; z < solver.open_flux().size(); ++z) {
-      const OpenFlux& f = solver.open_flux()[z];
-      io::JsonObject o;
-      o.set("index", z).set("name", solver.params().open_specs[z].name);
-      o.set("kind", std::string(solver.params().open[z].inlet ? "inlet" : "outlet"));
-      o.set("mass", f.mass).set("backflow_mass", f.backflow_mass);
-      o.set("created", f.created).set("deleted", f.deleted).set("buffer_particles", buffers[z]);
-      open.push_back(std::move(o));
-    }
-    summary.set("open_boundaries", open);
+    summary.set("open_boundaries", open_boundary_summary(solver));
     summary.set("fluid_mass", fluid_mass(solver.particles()));
   }
   for (const auto& p : s.outputs->probes())
@@ -335,19 +323,7 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
                       cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.wall_pressure_extrapolated,
                       cnt.wall_pressure_extrapolated_far, cnt.normal_fallback, cnt.surface_pushed, cnt.gap_squeezed,
                       cnt.isolated_left_out));
-  if (!solver.open_flux().empty()) {
-    // what crossed the open boundaries, and the fluid mass (open_boundaries.csv over time)
-    std::string crossed;
-    for (std::size_t z = 0; z < solver.open_flux().size(); ++z) {
-      const OpenFlux& f = solver.open_flux()[z];
-      crossed += fmt::format("{}{} '{}' {:.6g} kg/m ({} created, {} deleted)", z == 0 ? "" : ", ",
-                             solver.params().open[z].inlet ? "in through" : "out through",
-                             solver.params().open_specs[z].name, f.mass, f.created, f.deleted);
-    }
-    rep.say(fmt::format("open boundaries: {}; fluid mass {:.6g} kg/m; mirrored fits that fell back to the Shepard "
-                        "mean {}",
-                        crossed, fluid_mass(solver.particles()), cnt.open_fit_fallback));
-  }
+  if (!solver.open_flux().empty()) rep.say(open_boundary_log_line(solver));
   const char* compared = c.exact == ExactSolution::SpinUp ? "velocity" : "vx";
   if (particle_error)
     rep.say(fmt::format("L2 error of the fluid particles' {} against the exact solution: {:.4f} % of the peak speed",

@@ -10,6 +10,7 @@
 #include "particula/case/case.hpp"
 #include "particula/io/atomic_file.hpp"
 #include "particula/io/csv.hpp"
+#include "particula/io/json.hpp"
 #include "particula/io/vtk.hpp"
 #include "particula/solver/solver.hpp"
 
@@ -122,6 +123,10 @@ class OpenBoundaryWriter {
 /// The fluid mass (kind Fluid) and the buffer particles of each open boundary now.
 real fluid_mass(const Particles& P);
 std::vector<std::int64_t> buffer_counts(const Solver& s);
+/// summary.json's "open_boundaries": per open boundary its index, name, kind and what crossed it.
+std::vector<io::JsonObject> open_boundary_summary(const Solver& s);
+/// The log's line of what crossed each open boundary, the fluid mass and the fit fallbacks.
+std::string open_boundary_log_line(const Solver& s);
 
 /// The velocity of the exact solution the case declares at (x, t); nullopt when it has none.
 std::optional<Vec2> exact_velocity(const Case& c, Vec2 x, double t);
