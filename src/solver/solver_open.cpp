@@ -8,6 +8,7 @@
 
 #include "particula/fluid/fluid.hpp"
 #include "particula/solver/solver.hpp"
+#include "phase_timer.hpp"
 
 namespace particula {
 
@@ -101,6 +102,7 @@ real Solver::inlet_speed(std::size_t zone, real s, real t) const {
 }
 
 void Solver::open_ghost_weights() {
+  PhaseTimer timer(times_.geometry);
   buffer_.clear();
   buffer_zone_.clear();
   ghost_start_.assign(1, 0);
@@ -185,6 +187,7 @@ void Solver::open_min_distance() {
 }
 
 void Solver::open_velocities(real t_mid) {
+  PhaseTimer timer(times_.wall_pressure);
   for (std::size_t k = 0; k < buffer_.size(); ++k) {
     if (buffer_zone_[k] < 0) continue;
     const std::size_t b = buffer_[k], zi = static_cast<std::size_t>(buffer_zone_[k]);
@@ -202,6 +205,7 @@ void Solver::open_velocities(real t_mid) {
 }
 
 void Solver::open_pressures() {
+  PhaseTimer timer(times_.wall_pressure);
   for (std::size_t k = 0; k < buffer_.size(); ++k) {
     if (buffer_zone_[k] < 0 || ghost_start_[k] == ghost_start_[k + 1]) continue;
     const std::size_t b = buffer_[k];

@@ -125,9 +125,9 @@ inline std::vector<std::pair<const char*, std::int64_t>> guard_events(const Solv
 /// benchmark's per-phase breakdown; a handful of clock reads per step).
 struct PhaseTimes {
   double neighbors = 0;      // cell binning, neighbour list, fluid reordering
-  double geometry = 0;       // B, Bhat, normals, rbar, shifting direction
+  double geometry = 0;       // B, Bhat, normals, rbar, shifting direction, the fits of open boundaries
   double operators = 0;      // velocity derivatives, pressure gradient, Rhie-Chow, fluid stages
-  double wall_pressure = 0;  // P.20 (or the dummy copy)
+  double wall_pressure = 0;  // P.20 (or the dummy copy), and the fields of open boundaries' buffers
   double bodies = 0;         // loads, collisions, rigid motion, surface placement
   double integration = 0;    // end-of-step averages, dt, health check
   double shifting = 0;       // pressure gradient of the new state and the shift
