@@ -331,14 +331,14 @@ void check_open_bodies(const Case& c, const LoadContext& ctx) {
       throw ctx.error(
           place_key(c, k),
           fmt::format("{} comes {:.3g} m from {} at t = 0 (its bounding circle, of radius {:.6g} m about {}), closer "
-                      "than L_b + h + delta_c = {:.6g} m (buffer depth L_b = {} d0 = {:.6g} m, h = {:.6g} m, the "
+                      "than {:.6g} m: L_b + h + delta_c (buffer depth L_b = {} d0 = {:.6g} m, h = {:.6g} m, the "
                       "contact distance delta_c = {:.6g} m){}: the buffer's fields are set from the fluid beside the "
                       "line, which the body would cut off; move the body away from the open boundary",
                       body_text(c.bodies[k]), std::max(gap, 0.0), o.text(), body.bound, vec(body.center), need,
                       c.open_layers(*o.spec), depth, c.h(), delta_c,
                       band > depth + c.h() + delta_c
-                          ? fmt::format(", and the band of the momentum loads (numerics.force = \"momentum\") reaches "
-                                        "{:.6g} m = {} h from the body, which must not reach the buffer",
+                          ? fmt::format(", and more: the band of the momentum loads (numerics.force = \"momentum\") "
+                                        "reaches {:.6g} m = {} h from the body, and must not reach the buffer",
                                         band, kLoadBandReach)
                           : std::string()));
     }
