@@ -363,6 +363,18 @@ std::optional<Failure> Solver::check_health() const {
 }
 
 std::string Solver::likely_cause(Vec2 x) const {
+  // Next to an open boundary: the flow through it.
+  for (std::size_t z = 0; z < prm_.open.size(); ++z) {
+    const OpenZone& oz = prm_.open[z];
+    const real xi = open_depth(oz, x), s = open_along(oz, x);
+    if (!(xi < 3 * prm_.h && s > -prm_.h && s < oz.width + prm_.h)) continue;
+    return fmt::format("; it is {:.3g} d0 from {} '{}': likely cause: flow back in through that boundary or a "
+                       "pressure wave reflected there (a channel between a velocity inlet and a pressure outlet "
+                       "rings at c / 4L; an inflow started faster than a few of its periods sets it ringing hard "
+                       "enough to reverse the flow at the outlet: raise inlet[].ramp_time; docs/method-notes.md, "
+                       "\"Open boundaries\")",
+                       xi / prm_.d0, oz.inlet ? "inlet" : "outlet", prm_.open_specs[z].name);
+  }
   // The nearest surface particle (a search over the boundary block: only on failure).
   real best = 1e300;
   std::size_t s = P_.n_boundary;
