@@ -254,18 +254,20 @@ TEST(CaseOpen, InletAndOutletFarEnoughApart) {
   EXPECT_NO_THROW(load(channel("0.001")));
 }
 
-// i. No body within L_b + h + delta_c of an open segment.
+// i. Every body starts beyond the boundary's screen (Case::open_screen_offset) by delta_c.
 TEST(CaseOpen, BodiesClearOfOpenBoundaries) {
   const std::string body = "\n[[body]]\nname = \"post\"\nshape = \"circle\"\ncenter = [{}, 0.003]\nradius = 0.001\n"
                            "motion = \"fixed\"\n";
-  // Gap 0.0005 m, below L_b + h + delta_c = 4e-4 + 2.6e-4 + 0.5e-4 m.
+  // Gap 0.0005 m, below the screen (5 h = 1.3e-3 m) + delta_c = 0.5e-4 m.
   expect_error(kChannel + fmt::format(fmt::runtime(body), "0.0015"), "body[0].center", "center = [0.0015",
                "comes 0.0005 m from inlet 'in' (inlet[0])");
+  expect_error(kChannel + fmt::format(fmt::runtime(body), "0.0015"), "body[0].center", "center = [0.0015",
+               "the boundary's screen, which holds bodies back, lies 0.0013 m inside the line");
   expect_error(kChannel + fmt::format(fmt::runtime(body), "0.0185"), "body[0].center", "center = [0.0185",
                "from outlet 'out' (outlet[0])");
   EXPECT_NO_THROW(load(kChannel + fmt::format(fmt::runtime(body), "0.01")));
-  // With the momentum loads (the default) the band of 5 h = 1.3e-3 m round the body must stay
-  // clear of the buffer too; with the paper's loads L_b + h + delta_c is enough.
+  // With the momentum loads (the default) the screen lies 5 h = 1.3e-3 m in, so that the band of
+  // the body's loads stays clear of the buffer; with the paper's loads at L_b + h = 6.6e-4 m.
   const std::string near = kChannel + fmt::format(fmt::runtime(body), "0.0021");  // gap 1.1e-3 m
   expect_error(near, "body[0].center", "center = [0.0021", "the band of the momentum loads");
   EXPECT_NO_THROW(load(near + "\n[numerics]\nforce = \"paper\"\n"));

@@ -252,6 +252,86 @@ TEST(RobustnessChecks, FluidOutsideTheDomainOrInsideABody) {
   EXPECT_TRUE(find(bad, "fluid particles more than").pass);
 }
 
+namespace {
+
+/// open_boundaries.csv of one inlet and one outlet passing the same flux, the fluid mass constant.
+void write_balanced_open_boundaries(const fs::path& dir, double t_end) {
+  io::CsvWriter csv(dir / "open_boundaries.csv", {"time", "boundary", "mass", "backflow_mass", "created", "deleted",
+                                                   "buffer_particles", "fluid_mass"});
+  for (int k = 0; k <= 10; ++k) {
+    const double t = t_end * k / 10;
+    csv.row({t, 0, 0.01 * t, 0, 0, 0, 400, 0.2});
+    csv.row({t, 1, 0.012 * t, 0.002 * t, 0, 0, 400, 0.2});
+  }
+}
+
+}  // namespace
+
+TEST(RobustnessChecks, FluidizedBedHeightScreenAndSteadiness) {
+  const fs::path dir = fresh_dir("robust_fluidized_bed");
+  const Case c = load_case(kSource / "cases" / "fluidized_bed.toml");
+  const double screen = c.open_screen_offset(c.inlets.at(0)), R = 5e-4, d0 = c.d0;
+  const int n = static_cast<int>(c.bodies.size());
+  const double packed = n * M_PI * R * R / (0.01 * 0.82);
+  ASSERT_NEAR(screen, 1.3e-3, 1e-12);
+  // bodies spread evenly from the screen up to the bed height H(t); `dip` puts body 0 that far
+  // (in d0) below the screen at t = 1 s
+  auto bed = [&](double H_end, double growth, double dip) {
+    return [=](double t, int b) {
+      Row r;
+      const double H = H_end * (1 - 0.5 * std::exp(-t / 0.3)) + growth * t;
+      r.x = 0.005;
+      r.y = screen + R + (H - 2 * R) * b / (n - 1);
+      if (b == 0 && std::fabs(t - 1) < 1e-9) r.y -= dip * d0;
+      return r;
+    };
+  };
+  write_balanced_open_boundaries(dir, 3);
+  write_bodies(dir, n, 0.01, 3, bed(1.6 * packed, 0, 0));
+  auto ok = check_fluidized_bed(dir, c, 0.1);
+  ASSERT_EQ(ok.size(), 4u);
+  for (const auto& k : ok) EXPECT_TRUE(k.pass) << k.quantity << ": " << k.shown;
+  EXPECT_NEAR(ok[1].value, 1.6, 0.01);  // the bed's height over the densest packing's
+  EXPECT_NEAR(ok[0].value, 0, 1e-6);    // body 0 resting on the screen
+  write_bodies(dir, n, 0.01, 3, bed(1.6 * packed, 0, 0.5));  // a body through the screen
+  EXPECT_FALSE(check_fluidized_bed(dir, c, 0.1)[0].pass);
+  write_bodies(dir, n, 0.01, 3, bed(1.05 * packed, 0, 0));  // hardly expanded
+  EXPECT_FALSE(check_fluidized_bed(dir, c, 0.1)[1].pass);
+  write_bodies(dir, n, 0.01, 3, bed(1.6 * packed, 0.2 * packed, 0));  // still rising: 8 % over the last second
+  EXPECT_FALSE(check_fluidized_bed(dir, c, 0.1)[2].pass);
+}
+
+TEST(RobustnessChecks, ParticleChannelCarriesBodiesToTheOutletsScreen) {
+  const fs::path dir = fresh_dir("robust_particle_channel");
+  const Case c = load_case(kSource / "cases" / "particle_channel.toml");
+  const double screen = 0.016 - c.open_screen_offset(c.outlets.at(0)), R = 5e-4, d0 = c.d0;
+  const int n = static_cast<int>(c.bodies.size());
+  // each body moves at 4 mm/s until it stops `short_of` d0 from the screen (two abreast, body b
+  // b / 2 diameters behind the first pair); `stuck` stays put; `through` goes 0.5 d0 past it
+  auto carried = [&](double short_of, int stuck, int through) {
+    return [=, &c](double t, int b) {
+      Row r;
+      const Vec2 x0 = c.bodies[static_cast<std::size_t>(b)].center;
+      const double stop = screen - R - short_of * d0 - (b / 2) * 2.05 * R + (b == through ? 0.5 * d0 + short_of * d0 : 0);
+      r.x = b == stuck ? x0.x : std::min(x0.x + 4e-3 * t, stop);
+      r.y = x0.y;
+      return r;
+    };
+  };
+  write_balanced_open_boundaries(dir, 5);
+  write_bodies(dir, n, 0.02, 5, carried(0.4, -1, -1));
+  auto ok = check_particle_channel(dir, c, 5e-3);
+  ASSERT_EQ(ok.size(), 4u);
+  for (const auto& k : ok) EXPECT_TRUE(k.pass) << k.quantity << ": " << k.shown;
+  EXPECT_NEAR(ok[2].value, 0.4, 1e-6);  // the leading body's gap to the screen
+  write_bodies(dir, n, 0.02, 5, carried(0.4, 3, -1));  // one body never moves
+  EXPECT_FALSE(check_particle_channel(dir, c, 5e-3)[0].pass);
+  write_bodies(dir, n, 0.02, 5, carried(0.4, -1, 0));  // the leading body crosses the screen
+  EXPECT_FALSE(check_particle_channel(dir, c, 5e-3)[1].pass);
+  write_bodies(dir, n, 0.02, 5, carried(3, -1, -1));  // they stop 3 d0 short of it
+  EXPECT_FALSE(check_particle_channel(dir, c, 5e-3)[2].pass);
+}
+
 TEST(RobustnessChecks, GuardCountersAreReadWhateverTheirNames) {
   const std::string json = R"({"steps": 12, "guard_events": {"singular_B": 3, "surface_guard": 17,
     "nested": {"x": 1}, "note": "a \"string\"", "gap_fluid": null}, "after": 5})";
@@ -275,7 +355,9 @@ TEST(RobustnessSuite, GroupHasTheIssueCasesAtTwoLevels) {
     SCOPED_TRACE(e.name);
     const fs::path file = kSource / e.case_file;
     const std::string text = cli_test::read_text(file);
-    EXPECT_EQ(text.rfind("# Robustness: ", 0), 0u) << "a header comment saying what the case is";
+    // the cases with open boundaries are shipped examples (cases/), longer than CI allows
+    const bool example = e.case_file.rfind("cases/robustness/", 0) != 0;
+    if (!example) EXPECT_EQ(text.rfind("# Robustness: ", 0), 0u) << "a header comment saying what the case is";
     EXPECT_NE(text.find("# Checks: "), std::string::npos) << "and what it checks";
     // default numerics: the case is about untuned settings (no such table)
     EXPECT_EQ(text.find("\n[numerics]"), std::string::npos);
@@ -288,7 +370,7 @@ TEST(RobustnessSuite, GroupHasTheIssueCasesAtTwoLevels) {
     // small enough for CI at the coarse level (the dilute suspensions: 15.7 mm long for 6 and 12
     // circles at area fractions 0.05 and 0.1)
     const Scene s = build_scene(coarse);
-    EXPECT_LT(s.particles.size(), e.name.rfind("dilute_shear", 0) == 0 ? 9500u : 8000u);
+    if (!example) EXPECT_LT(s.particles.size(), e.name.rfind("dilute_shear", 0) == 0 ? 9500u : 8000u);
   }
   EXPECT_GE(names.size(), 10u);
   for (const char* must : {"settling_pile", "mixed_shapes", "drop_rebound", "incline_slide", "cylinder_channel_re0p1",
@@ -370,15 +452,18 @@ const std::set<std::string> kOpenFailures = {"rotating_drum"};
 
 /// Cases too long for CI (minutes each on two cores), run in full (with their checks) by
 /// `particula validate --group robustness`: the bodies need most of their end time to come to rest
-/// in a pile, the dilute suspensions need 20 strain units for the statistics of their
-/// viscosity, and the channels at Re 10 and 100 need 3 and 2 minutes on one core for their flows to
-/// develop (both pass since session 17). CI runs a short version of those with a value here: the case up to this time (s),
+/// in a pile or to slide down the slope, the suspensions need 10 and 20 strain units for the
+/// statistics of their viscosity, and the channels at Re 1, 10 and 100 need 2 to 3 minutes on one
+/// core for their flows to develop (all pass since session 17; Re 0.1 stays in CI for the steady
+/// channel's checks). Moved here in session 18 to keep CI under 20 minutes: incline_slide,
+/// sheared_suspension and cylinder_channel_re1. CI runs a short version of those with a value here: the case up to this time (s),
 /// through the first contacts and the gaps that close, where it must not stop with exit 3
 /// (0: no short version).
-const std::map<std::string, double> kLong = {{"settling_pile", 0.15},        {"mixed_shapes", 0.1},
-                                             {"rising_lid", 0.25},           {"dilute_shear_phi005", 0},
-                                             {"dilute_shear_phi010", 0},     {"cylinder_channel_re10", 0},
-                                             {"cylinder_channel_re100", 0}};
+const std::map<std::string, double> kLong = {
+    {"settling_pile", 0.1},        {"mixed_shapes", 0.08},         {"rising_lid", 0.15},
+    {"incline_slide", 0.2},        {"sheared_suspension", 3},      {"dilute_shear_phi005", 0},
+    {"dilute_shear_phi010", 0},    {"cylinder_channel_re1", 0},    {"cylinder_channel_re10", 0},
+    {"cylinder_channel_re100", 0}, {"fluidized_bed", 0},            {"particle_channel", 0}};
 
 enum class Listed { Ci, Open, Long };
 

@@ -60,8 +60,13 @@ const Coarse kContainers[] = {
     {"incline_wall", "2e-4"}, {"hopper", "2e-4"}, {"sunk_block", "2e-4"}, {"ring_container", "5e-4"}};
 
 /// The open-boundary cases (issue 17): poiseuille_open at 10 across (about a minute to twice its
-/// end time), dfg_2d1 and dfg_2d2 at D/10 (several minutes to half an hour): too long for CI.
-const Coarse kOpen[] = {{"poiseuille_open", "1e-4"}, {"dfg_2d1", "0.01"}, {"dfg_2d2", "0.01"}};
+/// end time), dfg_2d1 and dfg_2d2 at D/10 (several minutes to half an hour), particle_channel and
+/// fluidized_bed at 10 across a body (half an hour and over an hour): too long for CI.
+const Coarse kOpen[] = {{"poiseuille_open", "1e-4"},
+                        {"dfg_2d1", "0.01"},
+                        {"dfg_2d2", "0.01"},
+                        {"particle_channel", "1e-4"},
+                        {"fluidized_bed", "1e-4"}};
 
 /// gtest names the parameter by its case.
 void PrintTo(const Coarse& k, std::ostream* os) { *os << k.name << " at d0 = " << k.d0; }

@@ -307,10 +307,9 @@ void check_open_boundaries(const Case& c, const LoadContext& ctx) {
                     "[[inlet]] and [[outlet]] tables");
 }
 
-/// No body comes within L_b + h + delta_c of an open segment at t = 0 (its bounding circle,
-/// also through periodic boundaries): the buffer's fields come from the fluid beside the line,
-/// which a body there would cut off, and a body must not touch the line within its contact
-/// range.
+/// Every body starts on the fluid side of each open boundary's screen, at least delta_c from it
+/// (its bounding circle, also through periodic boundaries): a body nearer would start in contact
+/// with the screen or behind it, where it would cut off the fluid that sets the buffer.
 void check_open_bodies(const Case& c, const LoadContext& ctx) {
   if (c.inlets.empty() && c.outlets.empty()) return;
   const real tol = 1e-6 * c.d0, delta_c = c.contact_distance();
@@ -320,10 +319,8 @@ void check_open_bodies(const Case& c, const LoadContext& ctx) {
     const Outline body(c.bodies[k]);
     for (const Open& o : all) {
       const real depth = buffer_depth(c, *o.spec);
-      // With the momentum loads the band of kLoadBandReach h round the body must stay clear of the
-      // buffer too: its momentum balance needs every fluid particle of the band.
-      const real band = c.force == ForceModel::Momentum ? kLoadBandReach * c.h() : 0.0;
-      const real need = std::max(depth + c.h() + delta_c, band);
+      const real screen = c.open_screen_offset(*o.spec);
+      const real need = screen + delta_c;
       real gap = std::numeric_limits<real>::infinity();
       for (const Vec2 shift : shifts)
         gap = std::min(gap, segment_distance(body.center + shift, o.spec->from, o.spec->to) - body.bound);
@@ -331,18 +328,31 @@ void check_open_bodies(const Case& c, const LoadContext& ctx) {
       throw ctx.error(
           place_key(c, k),
           fmt::format("{} comes {:.3g} m from {} at t = 0 (its bounding circle, of radius {:.6g} m about {}), closer "
-                      "than {:.6g} m: L_b + h + delta_c (buffer depth L_b = {} d0 = {:.6g} m, h = {:.6g} m, the "
-                      "contact distance delta_c = {:.6g} m){}: the buffer's fields are set from the fluid beside the "
-                      "line, which the body would cut off; move the body away from the open boundary",
+                      "than {:.6g} m: the boundary's screen, which holds bodies back, lies {:.6g} m inside the "
+                      "line ({}), and a body starts at least the contact distance delta_c = {:.6g} m beyond it; "
+                      "move the body away from the open boundary",
                       body_text(c.bodies[k]), std::max(gap, 0.0), o.text(), body.bound, vec(body.center), need,
-                      c.open_layers(*o.spec), depth, c.h(), delta_c,
-                      band > depth + c.h() + delta_c
-                          ? fmt::format(", and more: the band of the momentum loads (numerics.force = \"momentum\") "
-                                        "reaches {:.6g} m = {} h from the body, and must not reach the buffer",
-                                        band, kLoadBandReach)
-                          : std::string()));
+                      screen,
+                      screen > depth + c.h() + tol
+                          ? fmt::format("the band of the momentum loads, {} h = {:.6g} m, must not reach the "
+                                        "buffer; numerics.force = \"momentum\"",
+                                        kLoadBandReach, screen)
+                          : fmt::format("L_b + h: the buffer depth L_b = {} d0 = {:.6g} m and h = {:.6g} m, the "
+                                        "fluid the buffer's fit reads",
+                                        c.open_layers(*o.spec), depth, c.h()),
+                      delta_c));
     }
   }
 }
 
 }  // namespace particula::case_detail
+
+namespace particula {
+
+real Case::open_screen_offset(const OpenSpec& o) const {
+  const real fit_reach = open_layers(o) * d0 + h();
+  const real band = force == ForceModel::Momentum ? kLoadBandReach * h() : 0.0;
+  return std::max(fit_reach, band);
+}
+
+}  // namespace particula

@@ -469,10 +469,12 @@ std::vector<SectionSpec> make_sections() {
                    "fluid (its left side) inside; it is at least 4 d0 long; each end is a corner of the domain or "
                    "the end of a wall; no wall runs along it and no wall that slides or turns ends on it; it "
                    "overlaps no other inlet or outlet; the case has an outlet at least L_b + 2 h away (L_b = "
-                   "layers d0, the larger of the two); no body comes within L_b + h + the contact distance of it "
-                   "at t = 0, nor with numerics.force = \"momentum\" within 5 h (the band of its loads); "
-                   "numerics.boundary is \"single_layer\". Open boundaries run on the CPU backend only (for now), "
-                   "and a body must not reach one during the run."),
+                   "layers d0, the larger of the two); numerics.boundary is \"single_layer\"; every body starts on "
+                   "the fluid side of the boundary's screen, at least the contact distance from it. The screen "
+                   "is a line parallel to the segment, max(L_b + h, 5 h with numerics.force = \"momentum\") "
+                   "inside the fluid, that free bodies meet like a fixed wall and the fluid passes (a "
+                   "distributor plate, a sieve): it keeps bodies clear of the fluid that sets the buffer. Open "
+                   "boundaries run on the CPU backend only (for now)."),
       open_section("outlet", &Case::outlets, OpenKind::Outlet,
                    "Outlets, one [[outlet]] table each: a straight segment on an edge of the domain where fluid "
                    "leaves at a prescribed pressure, with `layers` rows of buffer particles outside the domain "

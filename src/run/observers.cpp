@@ -342,9 +342,9 @@ std::string open_boundary_log_line(const Solver& s) {
   std::string crossed;
   for (std::size_t z = 0; z < s.open_flux().size(); ++z) {
     const OpenFlux& f = s.open_flux()[z];
-    crossed += fmt::format("{}{} '{}' {:.6g} kg/m ({} created, {} deleted)", z == 0 ? "" : ", ",
-                           s.params().open[z].inlet ? "in through" : "out through", s.params().open_specs[z].name,
-                           f.mass, f.created, f.deleted);
+    crossed += fmt::format("{}{} '{}' {:.6g} kg/m ({:.6g} kg/m the other way; {} created, {} deleted)",
+                           z == 0 ? "" : ", ", s.params().open[z].inlet ? "in through" : "out through",
+                           s.params().open_specs[z].name, f.mass, f.backflow_mass, f.created, f.deleted);
   }
   return fmt::format("open boundaries: {}; fluid mass {:.6g} kg/m; mirrored fits that fell back to the Shepard mean {}",
                      crossed, fluid_mass(s.particles()), s.counters().open_fit_fallback);

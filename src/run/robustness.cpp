@@ -137,6 +137,21 @@ double mean_from(const std::vector<double>& t, const std::vector<double>& y, dou
   return n ? sum / static_cast<double>(n) : std::nan("");
 }
 
+LineFit fit_line_from(const std::vector<double>& t, const std::vector<double>& y, double from) {
+  double st = 0, sy = 0, stt = 0, sty = 0;
+  LineFit f;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (t[k] >= from) st += t[k], sy += y[k], stt += t[k] * t[k], sty += t[k] * y[k], ++f.n;
+  const double n = static_cast<double>(f.n);
+  if (f.n > 1 && n * stt - st * st > 0) f.slope = (n * sty - st * sy) / (n * stt - st * st);
+  f.intercept = f.n > 0 ? (sy - f.slope * st) / n : 0;
+  double res2 = 0;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (t[k] >= from) res2 += std::pow(y[k] - (f.intercept + f.slope * t[k]), 2);
+  f.rms = f.n > 0 ? std::sqrt(res2 / n) : 0;
+  return f;
+}
+
 /// The restitution coefficient of the resolved case (collision.restitution), 0.8 when the key
 /// does not exist (the documented default of the spring-dashpot model); NaN for the P.38 model,
 /// which has none.

@@ -62,6 +62,13 @@ struct WallTrack {
 std::vector<WallTrack> read_wall_tracks(const std::filesystem::path& run_dir, std::size_t walls);
 /// Mean of y over the samples with t >= from.
 double mean_from(const std::vector<double>& t, const std::vector<double>& y, double from);
+/// The least-squares line y = intercept + slope t through the samples with t >= from, and the
+/// root mean square of the residuals about it.
+struct LineFit {
+  double slope = 0, intercept = 0, rms = 0;
+  std::size_t n = 0;
+};
+LineFit fit_line_from(const std::vector<double>& t, const std::vector<double>& y, double from);
 /// The restitution coefficient of the resolved case (0.8 by default, NaN for the P.38 model).
 double restitution(const std::filesystem::path& run_dir);
 /// The wall at y = `y` spanning the domain (the channel and Couette cases).

@@ -98,6 +98,10 @@ PhysicsParams physics_params(const Case& c) {
   const real dx = L.x / std::max(1, static_cast<int>(std::lround(L.x / c.d0)));
   const real dy = L.y / std::max(1, static_cast<int>(std::lround(L.y / c.d0)));
   p.open = scene_detail::open_zones(c, dx, dy);
+  for (const OpenSpec& o : c.open_boundaries()) {
+    const Vec2 in = c.open_screen_offset(o) * o.inward_normal();
+    p.open_screens.push_back(WallPiece::segment(o.from + in, o.to + in));
+  }
   p.open_specs = c.open_boundaries();
   const Domain dom{c.domain_min, c.domain_max, c.periodic_x, c.periodic_y};
   for (const auto& b : c.bodies) {

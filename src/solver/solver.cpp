@@ -306,26 +306,6 @@ std::optional<Failure> unhealthy_group(const std::vector<RigidGroup>& groups) {
 }
 }  // namespace
 
-std::optional<Failure> Solver::body_at_open_boundary() const {
-  for (const RigidGroup& g : groups_) {
-    if (g.is_wall || prm_.open.empty()) continue;
-    const real reach = prm_.bodies[static_cast<std::size_t>(g.body)].shape.bounding_radius() + prm_.h;
-    for (std::size_t z = 0; z < prm_.open.size(); ++z) {
-      const OpenZone& oz = prm_.open[z];
-      const real s = std::clamp(open_along(oz, g.pos), real(0), oz.width);
-      if (norm(domain_.separation(g.pos, oz.from + s * oz.t)) >= reach) continue;
-      Failure f;
-      f.position = g.pos;
-      f.what = fmt::format("body '{}' has reached {} '{}' (its bounding circle within h of the line): bodies cannot "
-                           "pass through open boundaries yet, and the buffer's fit and the body's loads would be "
-                           "cut off there; keep bodies away from inlets and outlets (a longer channel)",
-                           g.name, oz.inlet ? "inlet" : "outlet", prm_.open_specs[z].name);
-      return f;
-    }
-  }
-  return std::nullopt;
-}
-
 std::optional<Failure> Solver::check_health() const {
   if (auto f = body_at_open_boundary()) return f;
   const HealthLimits lim = health_limits();

@@ -1,5 +1,7 @@
 // The rigid-body side of Solver: group poses and motions, surface placement and kinematics,
 // the body stages of the predictor-corrector and the contacts (the loads: solver_loads.cpp).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -173,7 +175,7 @@ std::optional<Failure> Solver::find_contacts(real reach) {
       std::swap(a, b);
       c.normal = -c.normal;
     }
-    contacts_.push_back({a, b, c, 0});
+    contacts_.push_back({a, b, false, c, 0});
   }
   for (const std::size_t a : body_groups_) {
     if (!is_free(a)) continue;
@@ -181,10 +183,28 @@ std::optional<Failure> Solver::find_contacts(real reach) {
       const Contact c = wall_contact_exact(placed(prm_, groups_[a]), wall_now(w));
       if (c.gap > 1e299) continue;
       if (c.gap < overlap_limit(prm_)) return overlap_failure(groups_[a], "wall '" + groups_[w].name + "'", c.gap);
-      if (c.gap < reach) contacts_.push_back({a, w, c, 0});  // wall groups come first, in wall order
+      if (c.gap < reach) contacts_.push_back({a, w, false, c, 0});  // wall groups come first, in wall order
+    }
+    // the open boundaries' screens hold bodies back like fixed walls (Case::open_screen_offset)
+    for (std::size_t z = 0; z < prm_.open_screens.size(); ++z) {
+      const Contact c = wall_contact_exact(placed(prm_, groups_[a]), prm_.open_screens[z]);
+      if (c.gap > 1e299) continue;
+      if (c.gap < overlap_limit(prm_))
+        return overlap_failure(groups_[a], "the screen of open boundary '" + prm_.open_specs[z].name + "'", c.gap);
+      if (c.gap < reach) contacts_.push_back({a, z, true, c, 0});
     }
   }
   return std::nullopt;
+}
+
+const RigidGroup& Solver::contact_partner(const StepContact& sc) const {
+  static const RigidGroup screen = [] {
+    RigidGroup g;  // a fixed wall at rest
+    g.is_wall = true;
+    g.motion = Motion::Fixed;
+    return g;
+  }();
+  return sc.screen ? screen : groups_[sc.b];
 }
 
 void Solver::hold_contact_speeds(real imminent) {
@@ -192,7 +212,7 @@ void Solver::hold_contact_speeds(real imminent) {
   approach.assign(groups_.size(), -1);  // < 0: not near any solid
   for (const StepContact& sc : contacts_) {
     if (!(sc.c.gap < imminent)) continue;
-    const RigidGroup &ga = groups_[sc.a], &gb = groups_[sc.b];
+    const RigidGroup &ga = groups_[sc.a], &gb = contact_partner(sc);
     const Vec2 v = relative_velocity(contact_side(ga), contact_side(gb), domain_.separation(sc.c.point, ga.pos),
                                      domain_.separation(sc.c.point, gb.pos));
     const real speed = std::max(0.0, -dot(v, sc.c.normal));  // relative normal approach speed
@@ -207,7 +227,7 @@ void Solver::contact_stiffness(real imminent) {
   const real U_c = characteristic_impact_speed();
   const real delta_max = prm_.collision_max_overlap * prm_.d0;
   for (StepContact& sc : contacts_) {
-    const RigidGroup &ga = groups_[sc.a], &gb = groups_[sc.b];
+    const RigidGroup &ga = groups_[sc.a], &gb = contact_partner(sc);
     const bool b_moves = gb.motion == Motion::Free && !gb.is_wall;
     const real m_eff = effective_mass(ga.mass, b_moves ? gb.mass : 0.0);
     const real U = std::max({U_c, ga.contact_speed, gb.is_wall ? 0.0 : gb.contact_speed});
@@ -222,13 +242,15 @@ void Solver::contact_forces(real dt) {
   if (contacts_.empty()) return;
   const ContactLaw law = contact_law();
   for (const StepContact& sc : contacts_) {
-    RigidGroup &ga = groups_[sc.a], &gb = groups_[sc.b];
+    RigidGroup& ga = groups_[sc.a];
+    const RigidGroup& partner = contact_partner(sc);
     const ContactLoad load =
-        spring_dashpot_load(sc.c, contact_side(ga), contact_side(gb), domain_.separation(sc.c.point, ga.pos),
-                            domain_.separation(sc.c.point, gb.pos), sc.k, law, dt);
+        spring_dashpot_load(sc.c, contact_side(ga), contact_side(partner), domain_.separation(sc.c.point, ga.pos),
+                            domain_.separation(sc.c.point, partner.pos), sc.k, law, dt);
     ga.force_collision += load.force;
     ga.torque_collision += load.torque_a;
-    if (gb.is_wall) continue;
+    if (partner.is_wall) continue;
+    RigidGroup& gb = groups_[sc.b];
     gb.force_collision -= load.force;  // reaction (used when b is free; reported for fixed bodies)
     gb.torque_collision += load.torque_b;
   }
@@ -304,6 +326,34 @@ std::optional<Failure> Solver::paper_collisions() {
       if (c.gap < overlap_limit(prm_) && ga.motion == Motion::Free) return overlap_failure(ga, "a wall", c.gap);
       c.gap *= 2;
       ga.force_collision += repulsive_force(c, Ra, Ra, k, eps);
+    }
+    for (const WallPiece& screen : prm_.open_screens) {  // the open boundaries' screens, as walls
+      Contact c = wall_contact(pa, screen);
+      if (c.gap > 1e299) continue;
+      if (c.gap < overlap_limit(prm_) && ga.motion == Motion::Free) return overlap_failure(ga, "a screen", c.gap);
+      c.gap *= 2;
+      ga.force_collision += repulsive_force(c, Ra, Ra, k, eps);
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<Failure> Solver::body_at_open_boundary() const {
+  for (const RigidGroup& g : groups_) {
+    if (g.is_wall || prm_.open.empty()) continue;
+    for (std::size_t z = 0; z < prm_.open.size(); ++z) {
+      const OpenZone& oz = prm_.open[z];
+      // the body's surface against the line itself (its screen lies farther in and holds it back)
+      const Contact c = wall_contact_exact(placed(prm_, g), WallPiece::segment(oz.from, oz.from + oz.width * oz.t));
+      if (!(c.gap < prm_.h)) continue;
+      Failure f;
+      f.position = g.pos;
+      f.what = fmt::format("body '{}' has come within h of {} '{}' ({:.3g} d0 from the line): it was pushed "
+                           "through the boundary's screen, which holds bodies {:.3g} d0 inside the line, and the "
+                           "buffer's fit and the body's loads would be cut off there",
+                           g.name, oz.inlet ? "inlet" : "outlet", prm_.open_specs[z].name, c.gap / prm_.d0,
+                           dot(prm_.open_screens[z].start() - oz.from, oz.n) / prm_.d0);
+      return f;
     }
   }
   return std::nullopt;

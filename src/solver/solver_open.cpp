@@ -227,10 +227,9 @@ void Solver::open_move(real dt) {
     if (buffer_zone_[k] < 0) continue;
     const std::size_t b = buffer_[k];
     const OpenZone& z = prm_.open[static_cast<std::size_t>(buffer_zone_[k])];
-    real vn = dot(P_.v[b], z.n);
-    // An outlet's buffer only moves out (a vortex crossing the line cannot pull it back in).
-    if (!z.inlet) vn = std::min(vn, real(0));
-    P_.x[b] += (dt * vn) * z.n;
+    // Both ways at an outlet: where the fluid flows back in (a pressure wave's reflection, a vortex
+    // crossing the line) its buffer follows it, and open_transfer refills the back.
+    P_.x[b] += (dt * dot(P_.v[b], z.n)) * z.n;
   }
 }
 
@@ -285,13 +284,16 @@ void Solver::open_transfer() {
     const OpenZone& z = prm_.open[static_cast<std::size_t>(zi)];
     OpenFlux& f = open_flux_[static_cast<std::size_t>(zi)];
     const real xi = open_depth(z, x);
-    if (k == Kind::Inlet && xi >= 0) {
-      // The front of a column entered the fluid: it becomes fluid, and a new particle with its
-      // fields takes the back of the column, one buffer depth behind (the column keeps its spacing).
+    if (xi >= 0) {
+      // A buffer particle entered the fluid: it becomes fluid, and a new particle with its fields
+      // and mass takes its place one buffer depth behind, so that a buffer moving in keeps its
+      // particles (an inlet's column keeps its spacing; an outlet's buffer, which the fluid filled
+      // in no order, is refilled at its back with the pattern that left its front). At an outlet
+      // this is fluid flowing back in: counted as its backflow, which the outflow nets against.
       P_.kind[i] = Kind::Fluid;
-      f.mass += P_.m[i];
+      (k == Kind::Inlet ? f.mass : f.backflow_mass) += P_.m[i];
       ++f.created;
-      created.push_back({x - z.depth * z.n, P_.v[i], P_.p[i], P_.rho[i], z.mass});
+      created.push_back({x - z.depth * z.n, P_.v[i], P_.p[i], P_.rho[i], P_.m[i], k});
     } else if (k == Kind::Outlet && xi < -z.depth) {
       keep[i] = 0;
       ++f.deleted;
@@ -322,7 +324,7 @@ void Solver::open_transfer() {
     P_.p[to] = c.p;
     P_.rho[to] = c.rho;
     P_.m[to] = c.m;
-    P_.kind[to] = Kind::Inlet;
+    P_.kind[to] = c.kind;
     P_.group[to] = -1;
     P_.id[to] = P_.next_id++;
     ++to;

@@ -236,6 +236,12 @@ struct Case {
   int open_layers(const OpenSpec& o) const {
     return o.layers > 0 ? o.layers : static_cast<int>(std::ceil(h_over_d0 - 1e-9)) + 1;
   }
+  /// Distance from open boundary `o` into the fluid of its screen (docs/method-notes.md, "Open
+  /// boundaries"): the line, parallel to `o`, that bodies touch like a wall and never cross, so
+  /// that they stay clear of what the buffer needs: the fluid within L_b + h of the line sets the
+  /// buffer's fields by the fit at the mirrored ghost points, and with the momentum loads the band
+  /// of kLoadBandReach h round a body must hold fluid only. Defined in src/case/open_checks.cpp.
+  real open_screen_offset(const OpenSpec& o) const;
   /// Inlets then outlets: the order of the open boundaries (zones) in the solver and outputs.
   std::vector<OpenSpec> open_boundaries() const {
     std::vector<OpenSpec> all = inlets;

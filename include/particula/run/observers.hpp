@@ -107,10 +107,11 @@ class BodyHistoryWriter {
 /// open_boundaries.csv (cases with inlets or outlets): one row per open boundary per output,
 /// time,boundary,mass,backflow_mass,created,deleted,buffer_particles,fluid_mass: the boundary's
 /// index (inlets, then outlets, in case order), the mass that crossed it since t = 0 (kg/m: into
-/// the fluid at an inlet, out of it at an outlet), the fluid that left backwards through an inlet,
-/// the buffer particles created and the particles deleted there, its buffer particles now, and
-/// the mass of all fluid particles (the same on each row of a time). The fluid mass changes by
-/// exactly the inflow minus the outflow and the backflow, so the file checks mass conservation.
+/// the fluid at an inlet, out of it at an outlet), the mass that crossed it the other way (fluid
+/// that left backwards through an inlet, or came back in through an outlet), the buffer particles
+/// created and the particles deleted there, its buffer particles now, and the mass of all fluid
+/// particles (the same on each row of a time). The fluid mass changes by exactly the net inflows
+/// (mass - backflow_mass) minus the net outflows, so the file checks mass conservation.
 class OpenBoundaryWriter {
  public:
   explicit OpenBoundaryWriter(const std::filesystem::path& run_dir);

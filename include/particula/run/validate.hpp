@@ -113,6 +113,9 @@ std::vector<ValidationCheck> check_dfg_2d1(const std::filesystem::path& run_dir,
 std::vector<ValidationCheck> check_dfg_2d2(const std::filesystem::path& run_dir, const Case& c);
 /// The entries of the open-boundary cases (poiseuille_open: analytic; dfg_2d1, dfg_2d2: benchmark).
 std::vector<ValidationEntry> open_boundary_entries();
+/// The fluid mass against the fluxes of open_boundaries.csv: at each output time M(t) - M(0) less
+/// the net inflow plus the net outflow, the largest over the run relative to M(0) (< 1e-12).
+ValidationCheck open_mass_balance_check(const std::filesystem::path& run_dir, const Case& c);
 
 struct ValidateOptions {
   bool quick = false;  // analytic cases at the shipped resolution, paper cases coarse; default:

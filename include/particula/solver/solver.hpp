@@ -83,13 +83,17 @@ struct PhysicsParams {
   // open boundaries (boundary/open_boundary.hpp): inlets then outlets, the zone and its case entry
   std::vector<OpenZone> open;
   std::vector<OpenSpec> open_specs;
+  // each open boundary's screen (Case::open_screen_offset): a segment inside the fluid, parallel to
+  // the line, that bodies meet like a fixed wall; the fluid passes it
+  std::vector<WallPiece> open_screens;
 };
 
 /// What crossed an open boundary (zone) since the start of the run; checkpointed.
 struct OpenFlux {
   real mass = 0;           // kg/m: into the fluid at an inlet, out of it at an outlet
-  real backflow_mass = 0;  // kg/m: fluid that crossed an inlet backwards (deleted)
-  std::int64_t created = 0;  // buffer particles created (inlet)
+  real backflow_mass = 0;  // kg/m: the other way: fluid that left through an inlet (deleted), or
+                           // that came back in through an outlet; the net flux is mass - backflow
+  std::int64_t created = 0;  // buffer particles created (behind those that entered the fluid)
   std::int64_t deleted = 0;  // particles deleted (outlet: past the buffer; inlet: backflow)
 };
 
@@ -391,11 +395,14 @@ class Solver {
   // contacts of the step (spring-dashpot): the groups a (a body) and b (a body or a wall), the
   // geometry and the stiffness, found by collisions() and loaded by contact_forces()
   struct StepContact {
-    std::size_t a = 0, b = 0;
+    std::size_t a = 0, b = 0;  // b: a group, or an open boundary's screen (screen = true)
+    bool screen = false;
     Contact c;
     real k = 0;
   };
   std::vector<StepContact> contacts_;
+  /// The other side of a contact: its group, or a fixed wall at rest standing for a screen.
+  const RigidGroup& contact_partner(const StepContact& sc) const;
   real contact_dt_ = 0;  // dt limit of the active and imminent contacts, 0 = none
   std::vector<std::size_t> body_groups_;  // group index of each body, in group order
   std::vector<Vec2> body_pos_;
@@ -418,6 +425,7 @@ class Solver {
   struct CreatedParticle {
     Vec2 x, v;
     real p, rho, m;
+    Kind kind;
   };
   std::vector<CreatedParticle> created_;
   std::vector<unsigned char> keep_;
