@@ -401,3 +401,65 @@ TEST(OpenBoundary, ScreensHoldFreeBodiesAwayFromAnInletAndAnOutlet) {
                       (flux[1].mass - flux[1].backflow_mass)),
             1e-12 * m0);
 }
+
+TEST(OpenBoundary, AScreenHoldsABodyThatTheFlowPressesOntoIt) {
+  // A neutrally buoyant disc (D = 2 mm = 10 d0) carried by a viscous channel flow (mu = 0.1 Pa s)
+  // of 5 mm/s onto the outlet's screen. Its derived stiffness comes from its impact speed alone
+  // (no weight), about 200 N/m^2, and the drag of the flow past the held disc is several times
+  // k delta_max: without more it would press the disc about 0.5 d0 into the screen. The sustained
+  // load stiffens the contact (Solver::hold_sustained_load) so that the spring holds it within
+  // delta_max.
+  const std::string text = R"(
+name = "pressed_disc"
+[domain]
+min = [0.0, 0.0]
+max = [9.0e-3, 6.0e-3]
+[resolution]
+d0 = 2.0e-4
+[fluid]
+rho0 = 1000.0
+mu = 0.1
+c = 0.3
+[time]
+end = 0.2
+[output]
+interval = 0.01
+[[wall]]
+name = "lower"
+from = [0.0, 0.0]
+to = [9.0e-3, 0.0]
+[[wall]]
+name = "upper"
+from = [9.0e-3, 6.0e-3]
+to = [0.0, 6.0e-3]
+[[inlet]]
+name = "in"
+from = [0.0, 6.0e-3]
+to = [0.0, 0.0]
+velocity = 5.0e-3
+[[outlet]]
+name = "out"
+from = [9.0e-3, 0.0]
+to = [9.0e-3, 6.0e-3]
+[[body]]
+name = "disc"
+shape = "circle"
+center = [5.1e-3, 3.0e-3]
+radius = 1.0e-3
+density = 1000.0
+)";
+  const Case c = load_case_text(text, "pressed_disc.toml");
+  const real screen = 9e-3 - c.open_screen_offset(c.outlets.at(0)), R = 1e-3;
+  const real delta_c = c.contact_distance(), delta_max = c.collision_max_overlap * c.d0;
+  Solver s = make_solver(c);
+  std::optional<Failure> f;
+  real deepest = -1e300;  // largest spring compression delta_c - gap
+  while (!f && s.time() < c.t_end) {
+    f = s.step();
+    deepest = std::max(deepest, delta_c - (screen - s.groups().at(2).pos.x - R));
+  }
+  ASSERT_FALSE(f.has_value()) << f->what;
+  EXPECT_GT(deepest, 0) << "the disc never reached the screen";
+  EXPECT_LT(deepest, 1.5 * delta_max) << "the screen let the disc in by " << deepest / c.d0 << " d0";
+  EXPECT_GT(s.groups().at(2).contact_speed, 1e-3 * c.c) << "the held speed carries the load";
+}

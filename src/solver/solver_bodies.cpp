@@ -241,6 +241,7 @@ void Solver::contact_stiffness(real imminent) {
 void Solver::contact_forces(real dt) {
   if (contacts_.empty()) return;
   const ContactLaw law = contact_law();
+  const real delta_max = prm_.collision_max_overlap * prm_.d0;
   for (const StepContact& sc : contacts_) {
     RigidGroup& ga = groups_[sc.a];
     const RigidGroup& partner = contact_partner(sc);
@@ -249,11 +250,27 @@ void Solver::contact_forces(real dt) {
                             domain_.separation(sc.c.point, partner.pos), sc.k, law, dt);
     ga.force_collision += load.force;
     ga.torque_collision += load.torque_a;
+    const bool b_moves = !partner.is_wall && partner.motion == Motion::Free;
+    hold_sustained_load(ga, b_moves ? &groups_[sc.b] : nullptr, load.normal, sc.k, delta_max);
     if (partner.is_wall) continue;
     RigidGroup& gb = groups_[sc.b];
     gb.force_collision -= load.force;  // reaction (used when b is free; reported for fixed bodies)
     gb.torque_collision += load.torque_b;
   }
+}
+
+void Solver::hold_sustained_load(RigidGroup& a, RigidGroup* b, real normal_force, real k, real delta_max) {
+  // The derived stiffness stops an impact at the characteristic speed within delta_max, so a
+  // spring force above k delta_max is a sustained load that no impact explains: the flow pressing
+  // a chain of bodies onto a screen or a wall, a pile's weight. The steps that follow stiffen
+  // the contact so that the same force compresses it by delta_max / 2: the held contact speed of
+  // its bodies rises to the U of k = 2 F / delta_max (k = m_eff (U / delta_max)^2), and falls
+  // back once they leave every contact (hold_contact_speeds).
+  if (!(normal_force > k * delta_max) || prm_.collision_stiffness > 0) return;
+  const real m_eff = effective_mass(a.mass, b ? b->mass : 0.0);
+  const real U = std::sqrt(2 * normal_force * delta_max / m_eff);
+  a.contact_speed = std::max(a.contact_speed, U);
+  if (b) b->contact_speed = std::max(b->contact_speed, U);
 }
 
 real Solver::characteristic_impact_speed() const {
