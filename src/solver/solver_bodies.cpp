@@ -251,7 +251,7 @@ void Solver::contact_forces(real dt) {
     ga.force_collision += load.force;
     ga.torque_collision += load.torque_a;
     const bool b_moves = !partner.is_wall && partner.motion == Motion::Free;
-    hold_sustained_load(ga, b_moves ? &groups_[sc.b] : nullptr, load.normal, sc.k, delta_max);
+    hold_sustained_load(ga, b_moves ? &groups_[sc.b] : nullptr, sc.c.normal, sc.k, delta_max);
     if (partner.is_wall) continue;
     RigidGroup& gb = groups_[sc.b];
     gb.force_collision -= load.force;  // reaction (used when b is free; reported for fixed bodies)
@@ -259,16 +259,28 @@ void Solver::contact_forces(real dt) {
   }
 }
 
-void Solver::hold_sustained_load(RigidGroup& a, RigidGroup* b, real normal_force, real k, real delta_max) {
-  // The derived stiffness stops an impact at the characteristic speed within delta_max, so a
-  // spring force above k delta_max is a sustained load that no impact explains: the flow pressing
-  // a chain of bodies onto a screen or a wall, a pile's weight. The steps that follow stiffen
-  // the contact so that the same force compresses it by delta_max / 2: the held contact speed of
-  // its bodies rises to the U of k = 2 F / delta_max (k = m_eff (U / delta_max)^2), and falls
-  // back once they leave every contact (hold_contact_speeds).
-  if (!(normal_force > k * delta_max) || prm_.collision_stiffness > 0) return;
+Vec2 Solver::non_contact_load(const RigidGroup& g) const {
+  return g.force_pressure + g.force_viscous +
+         body_weight(g.mass, g.area, prm_.rho0, prm_.gravity, prm_.gravity_in_fluid);
+}
+
+void Solver::hold_sustained_load(RigidGroup& a, RigidGroup* b, Vec2 normal, real k, real delta_max) {
+  // The derived stiffness stops an impact at the characteristic speed within delta_max; nothing
+  // in it sizes the contact for a load that no impact explains: the flow pressing a body onto a
+  // screen or a wall, or onto the bodies queued in front of it. The part of each free body's
+  // non-contact load (fluid force and reduced weight) that presses it into the contact, L, must
+  // compress the spring by at most delta_max / 4 (so that a queue of a few such bodies still
+  // stays within delta_max): the held contact speed of the contact's free bodies rises to the U
+  // of k = 4 L / delta_max (k = m_eff (U / delta_max)^2), and falls back once they leave every
+  // contact (hold_contact_speeds). L does not depend on k, so the rise cannot feed on itself (a
+  // rule on the spring force did: raised at a fixed overlap, the force rose with k, and so did the
+  // next k; that injected energy and threw bodies apart in a jam at a screen).
+  if (prm_.collision_stiffness > 0) return;
+  real load = std::max(0.0, -dot(non_contact_load(a), normal));  // normal: from the partner towards a
+  if (b) load = std::max(load, dot(non_contact_load(*b), normal));
+  if (!(load > 0.25 * k * delta_max)) return;
   const real m_eff = effective_mass(a.mass, b ? b->mass : 0.0);
-  const real U = std::sqrt(2 * normal_force * delta_max / m_eff);
+  const real U = std::sqrt(4 * load * delta_max / m_eff);
   a.contact_speed = std::max(a.contact_speed, U);
   if (b) b->contact_speed = std::max(b->contact_speed, U);
 }

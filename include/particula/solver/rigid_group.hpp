@@ -39,7 +39,7 @@ struct RigidGroup {
   // spring-dashpot contacts: the largest approach speed of the body's current contact episode
   // (from its first contact until it is clear of every other solid again; 0 when clear). It
   // keeps the derived stiffness of an impact while the bodies slow down in it. Raised also to the
-  // speed whose stiffness holds a sustained load within delta_max / 2 (Solver::hold_sustained_load).
+  // speed whose stiffness holds a sustained load within delta_max / 4 (Solver::hold_sustained_load).
   real contact_speed = 0;
 
   // velocities at the start of the step (the predictor-corrector averages with them)

@@ -401,9 +401,11 @@ class Solver {
     real k = 0;
   };
   std::vector<StepContact> contacts_;
-  /// A contact whose spring force exceeds k delta_max carries a sustained load: raise the held
-  /// contact speed of its free bodies so that the derived stiffness holds it within delta_max / 2.
-  void hold_sustained_load(RigidGroup& a, RigidGroup* b, real normal_force, real k, real delta_max);
+  /// The fluid force and reduced weight of a body (what presses it into its contacts).
+  Vec2 non_contact_load(const RigidGroup& g) const;
+  /// Raise the held contact speed of a contact's free bodies so that the derived stiffness holds
+  /// the part of their non-contact loads that presses them into it within delta_max / 4.
+  void hold_sustained_load(RigidGroup& a, RigidGroup* b, Vec2 normal, real k, real delta_max);
   /// The other side of a contact: its group, or a fixed wall at rest standing for a screen.
   const RigidGroup& contact_partner(const StepContact& sc) const;
   real contact_dt_ = 0;  // dt limit of the active and imminent contacts, 0 = none
