@@ -255,13 +255,15 @@ TEST(RobustnessChecks, FluidOutsideTheDomainOrInsideABody) {
 namespace {
 
 /// open_boundaries.csv of one inlet and one outlet passing the same flux, the fluid mass constant.
-void write_balanced_open_boundaries(const fs::path& dir, double t_end) {
+/// With `gain` != 1 the fluid mass grows linearly to gain times its start by t_end, the inflow
+/// carrying the difference (the balance still holds).
+void write_balanced_open_boundaries(const fs::path& dir, double t_end, double gain = 1) {
   io::CsvWriter csv(dir / "open_boundaries.csv", {"time", "boundary", "mass", "backflow_mass", "created", "deleted",
                                                    "buffer_particles", "fluid_mass"});
   for (int k = 0; k <= 10; ++k) {
-    const double t = t_end * k / 10;
-    csv.row({t, 0, 0.01 * t, 0, 0, 0, 400, 0.2});
-    csv.row({t, 1, 0.012 * t, 0.002 * t, 0, 0, 400, 0.2});
+    const double t = t_end * k / 10, extra = 0.2 * (gain - 1) * t / t_end;
+    csv.row({t, 0, 0.01 * t + extra, 0, 0, 0, 400, 0.2 + extra});
+    csv.row({t, 1, 0.012 * t, 0.002 * t, 0, 0, 400, 0.2 + extra});
   }
 }
 
@@ -289,7 +291,7 @@ TEST(RobustnessChecks, FluidizedBedHeightScreenAndSteadiness) {
   write_balanced_open_boundaries(dir, 3);
   write_bodies(dir, n, 0.01, 3, bed(1.6 * packed, 0, 0));
   auto ok = check_fluidized_bed(dir, c, 0.1);
-  ASSERT_EQ(ok.size(), 4u);
+  ASSERT_EQ(ok.size(), 5u);
   for (const auto& k : ok) EXPECT_TRUE(k.pass) << k.quantity << ": " << k.shown;
   EXPECT_NEAR(ok[1].value, 1.6, 0.01);  // the bed's height over the densest packing's
   EXPECT_NEAR(ok[0].value, 0, 1e-6);    // body 0 resting on the screen
@@ -321,7 +323,7 @@ TEST(RobustnessChecks, ParticleChannelCarriesBodiesToTheOutletsScreen) {
   write_balanced_open_boundaries(dir, 5);
   write_bodies(dir, n, 0.02, 5, carried(0.4, -1, -1));
   auto ok = check_particle_channel(dir, c, 5e-3);
-  ASSERT_EQ(ok.size(), 4u);
+  ASSERT_EQ(ok.size(), 5u);
   for (const auto& k : ok) EXPECT_TRUE(k.pass) << k.quantity << ": " << k.shown;
   EXPECT_NEAR(ok[2].value, 0.4, 1e-6);  // the leading body's gap to the screen
   write_bodies(dir, n, 0.02, 5, carried(0.4, 3, -1));  // one body never moves
@@ -330,6 +332,9 @@ TEST(RobustnessChecks, ParticleChannelCarriesBodiesToTheOutletsScreen) {
   EXPECT_FALSE(check_particle_channel(dir, c, 5e-3)[1].pass);
   write_bodies(dir, n, 0.02, 5, carried(3, -1, -1));  // they stop 3 d0 short of it
   EXPECT_FALSE(check_particle_channel(dir, c, 5e-3)[2].pass);
+  write_bodies(dir, n, 0.02, 5, carried(0.4, -1, -1));
+  write_balanced_open_boundaries(dir, 5, 1.02);  // the fluid compressed by 2 %
+  EXPECT_FALSE(check_particle_channel(dir, c, 5e-3)[3].pass);
 }
 
 TEST(RobustnessChecks, GuardCountersAreReadWhateverTheirNames) {
