@@ -1,9 +1,8 @@
 // [[inlet]] and [[outlet]] at load (issue 17; docs/open-boundaries-plan.md, section 2.1): the
 // keys and their values in Case, and the cross checks of open_checks.cpp, each error naming the
 // file, the line and the key.
-#include <gtest/gtest.h>
-
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include <string>
 
@@ -83,7 +82,8 @@ TEST(CaseOpen, ChannelLoads) {
 TEST(CaseOpen, DefaultsOptionsAndRoundTrip) {
   std::string text = with(kChannel, "name = \"in\"\n", "");
   text = with(text, "name = \"out\"\n", "pressure = -50.0\nlayers = 6\n");
-  text = with(text, "velocity = 0.01", "velocity = 0.01\nprofile = \"parabolic\"\nramp_time = 0.2\nlayers = 2");
+  text =
+      with(text, "velocity = 0.01", "velocity = 0.01\nprofile = \"parabolic\"\nramp_time = 0.2\nlayers = 2");
   const Case c = load(text);
   EXPECT_EQ(c.inlets[0].name, "inlet0");
   EXPECT_EQ(c.outlets[0].name, "outlet0");
@@ -103,7 +103,8 @@ TEST(CaseOpen, DefaultsOptionsAndRoundTrip) {
 }
 
 TEST(CaseOpen, Overrides) {
-  const Case c = load(kChannel, {"inlet.0.velocity=0.02", "outlet.0.pressure=5", "inlet.0.profile=parabolic"});
+  const Case c =
+      load(kChannel, {"inlet.0.velocity=0.02", "outlet.0.pressure=5", "inlet.0.profile=parabolic"});
   EXPECT_EQ(c.inlets[0].velocity, 0.02);
   EXPECT_EQ(c.inlets[0].profile, InletProfile::Parabolic);
   EXPECT_EQ(c.outlets[0].pressure, 5.0);
@@ -111,7 +112,8 @@ TEST(CaseOpen, Overrides) {
 }
 
 TEST(CaseOpen, TableProfileParses) {
-  const Case c = load(inlet_with("profile = \"table\"\ntable = [\n  [0.0, 0.0],\n  [0.003, 0.02],\n  [0.006, 0.0],\n]"));
+  const Case c =
+      load(inlet_with("profile = \"table\"\ntable = [\n  [0.0, 0.0],\n  [0.003, 0.02],\n  [0.006, 0.0],\n]"));
   const OpenSpec& in = c.inlets[0];
   EXPECT_EQ(in.profile, InletProfile::Table);
   ASSERT_EQ(in.table.size(), 3u);
@@ -126,26 +128,40 @@ TEST(CaseOpen, KeysByProfile) {
                "missing required key for profile 'table'");
   expect_error(inlet_with("velocity = 0.01\nprofile = \"table\"\ntable = [[0, 0.01], [0.006, 0.01]]"),
                "inlet[0].velocity", "velocity = 0.01", "not used by profile 'table'");
-  expect_error(inlet_with("velocity = 0.01\ntable = [[0, 0.01], [0.006, 0.01]]"), "inlet[0].table", "table =",
-               "not used by profile 'uniform'");
+  expect_error(inlet_with("velocity = 0.01\ntable = [[0, 0.01], [0.006, 0.01]]"), "inlet[0].table",
+               "table =", "not used by profile 'uniform'");
   expect_error(inlet_with("velocity = 0.0"), "inlet[0].velocity", "velocity = 0.0", "out of range");
-  expect_error(inlet_with("velocity = 0.01\nprofile = \"cosine\""), "inlet[0].profile", "profile =", "parabolic");
-  expect_error(inlet_with("velocity = 0.01\nramp_time = -1.0"), "inlet[0].ramp_time", "ramp_time", "out of range");
+  expect_error(inlet_with("velocity = 0.01\nprofile = \"cosine\""), "inlet[0].profile",
+               "profile =", "parabolic");
+  expect_error(inlet_with("velocity = 0.01\nramp_time = -1.0"), "inlet[0].ramp_time", "ramp_time",
+               "out of range");
 }
 
 TEST(CaseOpen, MisspelledKeysAreUnknown) {
   expect_error(with(kChannel, "velocity = 0.01", "velocty = 0.01"), "inlet[0].velocty", "velocty",
                "unknown key (did you mean 'inlet[0].velocity'?)");
-  expect_error(with(kChannel, "name = \"out\"", "name = \"out\"\npresure = 10.0"), "outlet[0].presure", "presure",
-               "unknown key (did you mean 'outlet[0].pressure'?)");
+  expect_error(with(kChannel, "name = \"out\"", "name = \"out\"\npresure = 10.0"), "outlet[0].presure",
+               "presure", "unknown key (did you mean 'outlet[0].pressure'?)");
   expect_error(with(kChannel, "name = \"out\"", "name = \"out\"\nvelocity = 0.01"), "outlet[0].velocity",
                "velocity = 0.01\nfrom = [0.02", "unknown key");
 }
 
+TEST(CaseOpen, AnOutletHoldsBodiesUnlessItRemovesThem) {
+  EXPECT_EQ(load_case_text(kChannel, kFile).outlets.at(0).bodies, OutletBodies::Held);
+  const std::string removes = with(kChannel, "name = \"out\"", "name = \"out\"\nbodies = \"removed\"");
+  EXPECT_EQ(load_case_text(removes, kFile).outlets.at(0).bodies, OutletBodies::Removed);
+  expect_error(with(kChannel, "name = \"out\"", "name = \"out\"\nbodies = \"gone\""), "outlet[0].bodies",
+               "bodies = \"gone\"", "removed");
+  // an inlet always holds bodies back: the key is not one of its keys
+  expect_error(inlet_with("velocity = 0.01\nbodies = \"removed\""), "inlet[0].bodies",
+               "bodies =", "unknown key");
+}
+
 TEST(CaseOpen, NamesUniqueAmongInletsAndOutlets) {
-  expect_error(with(kChannel, "name = \"out\"", "name = \"in\""), "outlet[0].name", "name = \"in\"\nfrom = [0.02",
-               "duplicate outlet name \"in\" (already used by inlet[0].name)");
-  const std::string two = kChannel + "\n[[inlet]]\nname = \"in\"\nfrom = [0.0, 0.006]\nto = [0.0, 0.0]\nvelocity = 0.02\n";
+  expect_error(with(kChannel, "name = \"out\"", "name = \"in\""), "outlet[0].name",
+               "name = \"in\"\nfrom = [0.02", "duplicate outlet name \"in\" (already used by inlet[0].name)");
+  const std::string two =
+      kChannel + "\n[[inlet]]\nname = \"in\"\nfrom = [0.0, 0.006]\nto = [0.0, 0.0]\nvelocity = 0.02\n";
   expect_error(two, "inlet[1].name", "name = \"in\"\nfrom = [0.0, 0.006]\nto = [0.0, 0.0]\nvelocity = 0.02",
                "duplicate inlet name");
 }
@@ -165,12 +181,14 @@ TEST(CaseOpen, SegmentOnADomainEdge) {
   const std::string beyond = with(kChannel, "from = [0.0, 0.006]\nto = [0.0, 0.0]\nvelocity",
                                   "from = [0.0, 0.007]\nto = [0.0, 0.0]\nvelocity");
   expect_error(beyond, "inlet[0].from", "from = [0.0, 0.007]", "outside the domain");
-  const std::string periodic = with(kChannel, "max = [0.02, 0.006]", "max = [0.02, 0.006]\nperiodic = [true, false]");
+  const std::string periodic =
+      with(kChannel, "max = [0.02, 0.006]", "max = [0.02, 0.006]\nperiodic = [true, false]");
   expect_error(periodic, "inlet[0].from", "from = [0.0, 0.006]\nto = [0.0, 0.0]\nvelocity",
                "the domain is periodic along x");
   const std::string reversed = with(kChannel, "from = [0.0, 0.006]\nto = [0.0, 0.0]\nvelocity",
                                     "from = [0.0, 0.0]\nto = [0.0, 0.006]\nvelocity");
-  expect_error(reversed, "inlet[0].from", "from = [0.0, 0.0]\nto = [0.0, 0.006]", "list it the other way round");
+  expect_error(reversed, "inlet[0].from", "from = [0.0, 0.0]\nto = [0.0, 0.006]",
+               "list it the other way round");
   const std::string outlet_reversed =
       with(kChannel, "from = [0.02, 0.0]\nto = [0.02, 0.006]", "from = [0.02, 0.006]\nto = [0.02, 0.0]");
   expect_error(outlet_reversed, "outlet[0].from", "from = [0.02, 0.006]\nto = [0.02, 0.0]",
@@ -188,7 +206,8 @@ TEST(CaseOpen, AtLeastFourD0Wide) {
 TEST(CaseOpen, EndsAtCornersOrWallEnds) {
   const std::string short_inlet = with(kChannel, "from = [0.0, 0.006]\nto = [0.0, 0.0]\nvelocity",
                                        "from = [0.0, 0.006]\nto = [0.0, 0.001]\nvelocity");
-  expect_error(short_inlet, "inlet[0].to", "to = [0.0, 0.001]", "ends at [0.0, 0.001], which is neither a corner");
+  expect_error(short_inlet, "inlet[0].to", "to = [0.0, 0.001]",
+               "ends at [0.0, 0.001], which is neither a corner");
   // A wall chain ending there closes the region with it.
   const Case c = load(short_inlet + "\n[[wall]]\nname = \"foot\"\nfrom = [0.0, 0.001]\nto = [0.0, 0.0]\n");
   EXPECT_NEAR(c.inlets[0].width(), 0.005, 1e-15);
@@ -196,10 +215,11 @@ TEST(CaseOpen, EndsAtCornersOrWallEnds) {
 
 // d. No wall along it; no two open boundaries overlapping.
 TEST(CaseOpen, NoWallAlongItAndNoOverlap) {
-  expect_error(kChannel + "\n[[wall]]\nname = \"left\"\nfrom = [0.0, 0.003]\nto = [0.0, 0.0]\n", "inlet[0].from",
-               "from = [0.0, 0.006]\nto = [0.0, 0.0]\nvelocity",
+  expect_error(kChannel + "\n[[wall]]\nname = \"left\"\nfrom = [0.0, 0.003]\nto = [0.0, 0.0]\n",
+               "inlet[0].from", "from = [0.0, 0.006]\nto = [0.0, 0.0]\nvelocity",
                "wall 'left' (wall[2]) runs along inlet 'in' (inlet[0]) for 0.003 m");
-  const std::string twice = kChannel + "\n[[inlet]]\nname = \"in2\"\nfrom = [0.0, 0.006]\nto = [0.0, 0.0]\nvelocity = 0.02\n";
+  const std::string twice =
+      kChannel + "\n[[inlet]]\nname = \"in2\"\nfrom = [0.0, 0.006]\nto = [0.0, 0.0]\nvelocity = 0.02\n";
   expect_error(twice, "inlet[1].from", "from = [0.0, 0.006]\nto = [0.0, 0.0]\nvelocity = 0.02",
                "inlet 'in2' (inlet[1]) overlaps inlet 'in' (inlet[0]) for 0.006 m");
 }
@@ -208,10 +228,11 @@ TEST(CaseOpen, NoWallAlongItAndNoOverlap) {
 // in the domain, with a corner on the inlet.
 TEST(CaseOpen, NoMovingWallEndsOnIt) {
   std::string triangle;
-  for (const auto& [from, to] : {std::pair{"[0.0, 0.003]", "[0.001, 0.0035]"},
-                                 std::pair{"[0.001, 0.0035]", "[0.001, 0.0025]"},
-                                 std::pair{"[0.001, 0.0025]", "[0.0, 0.003]"}})
-    triangle += fmt::format("\n[[wall]]\nfrom = {}\nto = {}\nomega = 1.0\npivot = [0.002, 0.003]\n", from, to);
+  for (const auto& [from, to] :
+       {std::pair{"[0.0, 0.003]", "[0.001, 0.0035]"}, std::pair{"[0.001, 0.0035]", "[0.001, 0.0025]"},
+        std::pair{"[0.001, 0.0025]", "[0.0, 0.003]"}})
+    triangle +=
+        fmt::format("\n[[wall]]\nfrom = {}\nto = {}\nomega = 1.0\npivot = [0.002, 0.003]\n", from, to);
   expect_error(kChannel + triangle, "wall[2].omega", "omega = 1.0",
                "turns (omega 1 rad/s) and has an end at [0.0, 0.003] on inlet 'in' (inlet[0])");
 }
@@ -219,18 +240,18 @@ TEST(CaseOpen, NoMovingWallEndsOnIt) {
 // f. Table rows.
 TEST(CaseOpen, TableRows) {
   const std::string table = "profile = \"table\"\ntable = [\n  [0.0, 0.01],\n  [0.003, 0.02],\n  {},\n]";
-  expect_error(inlet_with(fmt::format(fmt::runtime(table), "[0.002, 0.01]")), "inlet[0].table", "[0.002, 0.01]",
-               "s must increase strictly");
-  expect_error(inlet_with(fmt::format(fmt::runtime(table), "[0.003, 0.01]")), "inlet[0].table", "[0.003, 0.01]",
-               "s must increase strictly");
-  expect_error(inlet_with(fmt::format(fmt::runtime(table), "[0.0071, 0.0]")), "inlet[0].table", "[0.0071, 0.0]",
-               "lies outside the segment [0, 0.006] m");
-  expect_error(inlet_with(fmt::format(fmt::runtime(table), "[0.006, -0.001]")), "inlet[0].table", "[0.006, -0.001]",
-               "u = -0.001 m/s is negative");
-  expect_error(inlet_with("profile = \"table\"\ntable = [[0.0, 0.0], [0.006, 0.0]]"), "inlet[0].table", "table =",
-               "no fluid would enter");
-  expect_error(inlet_with("profile = \"table\"\ntable = [[0.0, 0.01]]"), "inlet[0].table", "table =",
-               "too few points");
+  expect_error(inlet_with(fmt::format(fmt::runtime(table), "[0.002, 0.01]")), "inlet[0].table",
+               "[0.002, 0.01]", "s must increase strictly");
+  expect_error(inlet_with(fmt::format(fmt::runtime(table), "[0.003, 0.01]")), "inlet[0].table",
+               "[0.003, 0.01]", "s must increase strictly");
+  expect_error(inlet_with(fmt::format(fmt::runtime(table), "[0.0071, 0.0]")), "inlet[0].table",
+               "[0.0071, 0.0]", "lies outside the segment [0, 0.006] m");
+  expect_error(inlet_with(fmt::format(fmt::runtime(table), "[0.006, -0.001]")), "inlet[0].table",
+               "[0.006, -0.001]", "u = -0.001 m/s is negative");
+  expect_error(inlet_with("profile = \"table\"\ntable = [[0.0, 0.0], [0.006, 0.0]]"), "inlet[0].table",
+               "table =", "no fluid would enter");
+  expect_error(inlet_with("profile = \"table\"\ntable = [[0.0, 0.01]]"), "inlet[0].table",
+               "table =", "too few points");
   // s = width up to round-off is on the segment.
   EXPECT_NO_THROW(load(inlet_with(fmt::format(fmt::runtime(table), "[0.006000000000001, 0.0]"))));
 }
@@ -239,8 +260,7 @@ TEST(CaseOpen, TableRows) {
 TEST(CaseOpen, InletNeedsAnOutlet) {
   const std::string no_outlet = kChannel.substr(0, kChannel.find("[[outlet]]"));
   expect_error(no_outlet, "inlet[0]", "[[inlet]]", "fluid that enters would pile up");
-  const std::string outlet_only =
-      with(kChannel, "[[inlet]]\nname = \"in\"", "[[wall]]\nname = \"left\"");
+  const std::string outlet_only = with(kChannel, "[[inlet]]\nname = \"in\"", "[[wall]]\nname = \"left\"");
   const Case c = load(with(outlet_only, "velocity = 0.01\n", ""));
   EXPECT_TRUE(c.inlets.empty());
   EXPECT_EQ(c.outlets.size(), 1u);
@@ -256,8 +276,9 @@ TEST(CaseOpen, InletAndOutletFarEnoughApart) {
 
 // i. Every body starts beyond the boundary's screen (Case::open_screen_offset) by delta_c.
 TEST(CaseOpen, BodiesClearOfOpenBoundaries) {
-  const std::string body = "\n[[body]]\nname = \"post\"\nshape = \"circle\"\ncenter = [{}, 0.003]\nradius = 0.001\n"
-                           "motion = \"fixed\"\n";
+  const std::string body =
+      "\n[[body]]\nname = \"post\"\nshape = \"circle\"\ncenter = [{}, 0.003]\nradius = 0.001\n"
+      "motion = \"fixed\"\n";
   // Gap 0.0005 m, below the screen (5 h = 1.3e-3 m) + delta_c = 0.5e-4 m.
   expect_error(kChannel + fmt::format(fmt::runtime(body), "0.0015"), "body[0].center", "center = [0.0015",
                "comes 0.0005 m from inlet 'in' (inlet[0])");

@@ -15,13 +15,14 @@
 
 #include "cli_process.hpp"
 #include "particula/case/load.hpp"
+#include "particula/io/csv.hpp"
 #include "particula/io/error.hpp"
 #include "particula/io/vtk.hpp"
 #include "particula/run/checkpoint.hpp"
 #include "particula/run/observers.hpp"
-#include "particula/solver/momentum_loads.hpp"
 #include "particula/scene/scene.hpp"
 #include "particula/solver/interpolation.hpp"
+#include "particula/solver/momentum_loads.hpp"
 #include "particula/solver/solver.hpp"
 
 namespace fs = std::filesystem;
@@ -52,7 +53,6 @@ Solver make_solver(const Case& c) {
   Scene sc = build_scene(c);
   return Solver(sc.params, sc.domain, std::move(sc.particles), std::move(sc.groups));
 }
-
 
 }  // namespace
 
@@ -107,7 +107,8 @@ TEST(OpenBoundary, FluidMassChangesByExactlyTheFluxesAndIdsStayUnique) {
   ASSERT_EQ(f.size(), 2u);
   EXPECT_GT(f[0].created, 20) << "columns of the inlet entered the fluid";
   EXPECT_GT(f[1].deleted, 0) << "particles left through the outlet's buffer";
-  const real balance = fluid_mass(s.particles()) - m0 - (f[0].mass - f[0].backflow_mass) + (f[1].mass - f[1].backflow_mass);
+  const real balance =
+      fluid_mass(s.particles()) - m0 - (f[0].mass - f[0].backflow_mass) + (f[1].mass - f[1].backflow_mass);
   EXPECT_LT(std::fabs(balance), 1e-12 * m0) << "fluid mass changes by the net flux through the lines";
   const Particles& P = s.particles();
   std::vector<std::int64_t> ids(P.id);
@@ -166,8 +167,8 @@ TEST(OpenBoundary, CheckpointsCarryCreatedParticlesAndAreChecked) {
   const real t = s.time();
   const std::int64_t step = s.step_count();
   const std::vector<OutputMark> marks;
-  const std::string bytes = encode_checkpoint(CheckpointView{toml, hash, t, step, s.counters(), marks, s.particles(),
-                                                             s.groups(), s.open_flux()});
+  const std::string bytes = encode_checkpoint(
+      CheckpointView{toml, hash, t, step, s.counters(), marks, s.particles(), s.groups(), s.open_flux()});
   const Checkpoint k = decode_checkpoint(bytes, "x.bin");
   EXPECT_EQ(k.particles.next_id, s.particles().next_id);
   EXPECT_TRUE(k.particles.id == s.particles().id);
@@ -202,16 +203,22 @@ TEST(OpenBoundary, CheckpointsCarryCreatedParticlesAndAreChecked) {
   no_outlet.outlets.clear();
   bad = k;
   bad.open_flux.pop_back();
-  EXPECT_THROW(check_checkpoint_fits_case(bad, no_outlet, "x.bin"), io::IoError) << "outlet particles, no outlet";
+  EXPECT_THROW(check_checkpoint_fits_case(bad, no_outlet, "x.bin"), io::IoError)
+      << "outlet particles, no outlet";
 }
 
 TEST(OpenBoundary, ResumedRunIsBitwiseIdenticalAcrossCreationsAndDeletions) {
   const fs::path dir = cli_test::fresh_dir("open_resume");
-  const std::vector<std::string> common{"--quiet", "--no-plots", "--threads", "1", "--set", "resolution.d0=1e-4",
-                                        "--set", "output.interval=0.005", "--set", "output.snapshot_interval=0.01"};
+  const std::vector<std::string> common{"--quiet",   "--no-plots",
+                                        "--threads", "1",
+                                        "--set",     "resolution.d0=1e-4",
+                                        "--set",     "output.interval=0.005",
+                                        "--set",     "output.snapshot_interval=0.01"};
   // the fast channel as a case file: uniform 1 cm/s from t = 0
   std::string text = cli_test::read_text(kChannel);
-  const auto replace = [&](const std::string& a, const std::string& b) { text.replace(text.find(a), a.size(), b); };
+  const auto replace = [&](const std::string& a, const std::string& b) {
+    text.replace(text.find(a), a.size(), b);
+  };
   replace("profile = \"parabolic\"", "profile = \"uniform\"");
   replace("velocity = 1.0e-3", "velocity = 1.0e-2");
   replace("ramp_time = 0.2", "ramp_time = 0.0");
@@ -226,19 +233,21 @@ TEST(OpenBoundary, ResumedRunIsBitwiseIdenticalAcrossCreationsAndDeletions) {
   ASSERT_EQ(whole.code, 0) << whole.output;
   const auto half = run(dir / "half", "0.02");
   ASSERT_EQ(half.code, 0) << half.output;
-  const auto resumed = cli_test::cli({"resume", (dir / "half").string(), "--set", "time.end=0.04", "--threads", "1",
-                                      "--quiet", "--no-plots"});
+  const auto resumed = cli_test::cli({"resume", (dir / "half").string(), "--set", "time.end=0.04",
+                                      "--threads", "1", "--quiet", "--no-plots"});
   ASSERT_EQ(resumed.code, 0) << resumed.output;
   for (const char* f : {"open_boundaries.csv", "probe_profile.csv", "probe_centre.csv", "walls.csv"}) {
     const std::string a = cli_test::read_text(dir / "whole" / f), b = cli_test::read_text(dir / "half" / f);
     EXPECT_FALSE(a.empty()) << f;
     EXPECT_TRUE(a == b) << f << " differs after the resume";
   }
-  EXPECT_TRUE(cli_test::read_text(dir / "whole" / "particles.pvd") == cli_test::read_text(dir / "half" / "particles.pvd"));
+  EXPECT_TRUE(cli_test::read_text(dir / "whole" / "particles.pvd") ==
+              cli_test::read_text(dir / "half" / "particles.pvd"));
   const auto index = io::PvdIndex::read(dir / "whole" / "particles.pvd");
   EXPECT_GE(index.entries().size(), 4u);
   for (const auto& e : index.entries())
-    EXPECT_TRUE(cli_test::read_text(dir / "whole" / e.file) == cli_test::read_text(dir / "half" / e.file)) << e.file;
+    EXPECT_TRUE(cli_test::read_text(dir / "whole" / e.file) == cli_test::read_text(dir / "half" / e.file))
+        << e.file;
   const std::string summary = cli_test::read_text(dir / "whole" / "summary.json");
   EXPECT_NE(summary.find("\"open_boundaries\""), std::string::npos) << summary;
   EXPECT_NE(summary.find("\"fluid_mass\""), std::string::npos) << summary;
@@ -285,7 +294,8 @@ TEST(OpenBoundary, PoiseuilleThroughAnInletAndAnOutletMatchesTheParabola) {
   EXPECT_NEAR(dpdx / (-8 * mu * Um / (H * H)), 1.0, 0.04) << "pressure gradient along the channel";
   // the fluid mass changes by the net flux alone
   const auto& f = s.open_flux();
-  EXPECT_LT(std::fabs(fluid_mass(s.particles()) - m0 - f[0].mass + f[1].mass + f[0].backflow_mass - f[1].backflow_mass),
+  EXPECT_LT(std::fabs(fluid_mass(s.particles()) - m0 - f[0].mass + f[1].mass + f[0].backflow_mass -
+                      f[1].backflow_mass),
             1e-12 * m0);
   EXPECT_EQ(s.counters().open_fit_fallback, 0);
   EXPECT_EQ(s.counters().wall_pressure_kept + s.counters().wall_pressure_extrapolated, 0);
@@ -402,14 +412,12 @@ TEST(OpenBoundary, ScreensHoldFreeBodiesAwayFromAnInletAndAnOutlet) {
             1e-12 * m0);
 }
 
-TEST(OpenBoundary, AScreenHoldsABodyThatTheFlowPressesOntoIt) {
-  // A neutrally buoyant disc (D = 2 mm = 10 d0) carried by a viscous channel flow (mu = 0.1 Pa s)
-  // of 5 mm/s onto the outlet's screen. Its derived stiffness comes from its impact speed alone
-  // (no weight), about 200 N/m^2, and the drag of the flow past the held disc is several times
-  // k delta_max: without more it would press the disc about 0.5 d0 into the screen. The sustained
-  // load stiffens the contact (Solver::hold_sustained_load) so that the spring holds it within
-  // delta_max.
-  const std::string text = R"(
+/// A neutrally buoyant disc (D = 2 mm = 10 d0, its surface 0.3 mm before the outlet's screen) in
+/// a viscous channel flow (mu = 0.1 Pa s) of 5 mm/s that carries it to the outlet; `outlet_extra`
+/// adds keys to the [[outlet]] table.
+namespace {
+std::string pressed_disc_text(const std::string& outlet_extra = "") {
+  std::string text = R"(
 name = "pressed_disc"
 [domain]
 min = [0.0, 0.0]
@@ -448,6 +456,20 @@ center = [5.1e-3, 3.0e-3]
 radius = 1.0e-3
 density = 1000.0
 )";
+  const std::string anchor = "to = [9.0e-3, 6.0e-3]\n[[body]]";
+  text.replace(text.find(anchor), anchor.size(), "to = [9.0e-3, 6.0e-3]\n" + outlet_extra + "[[body]]");
+  return text;
+}
+}  // namespace
+
+TEST(OpenBoundary, AScreenHoldsABodyThatTheFlowPressesOntoIt) {
+  // A neutrally buoyant disc (D = 2 mm = 10 d0) carried by a viscous channel flow (mu = 0.1 Pa s)
+  // of 5 mm/s onto the outlet's screen. Its derived stiffness comes from its impact speed alone
+  // (no weight), about 200 N/m^2, and the drag of the flow past the held disc is several times
+  // k delta_max: without more it would press the disc about 0.5 d0 into the screen. The sustained
+  // load stiffens the contact (Solver::hold_sustained_load) so that the spring holds it within
+  // delta_max.
+  const std::string text = pressed_disc_text();
   const Case c = load_case_text(text, "pressed_disc.toml");
   const real screen = 9e-3 - c.open_screen_offset(c.outlets.at(0)), R = 1e-3;
   const real delta_c = c.contact_distance(), delta_max = c.collision_max_overlap * c.d0;
@@ -462,4 +484,148 @@ density = 1000.0
   EXPECT_GT(deepest, 0) << "the disc never reached the screen";
   EXPECT_LT(deepest, 1.5 * delta_max) << "the screen let the disc in by " << deepest / c.d0 << " d0";
   EXPECT_GT(s.groups().at(2).contact_speed, 1e-3 * c.c) << "the held speed carries the load";
+}
+
+TEST(OpenBoundary, AnOutletThatRemovesBodiesTakesOutADiscCarriedToItAndFillsItsPlace) {
+  // The pressed disc, with an outlet that removes bodies: the disc is taken out when its surface
+  // reaches the screen's line, fluid of its area fills its place, the flow goes on, and the fluid
+  // mass changes by exactly the fluxes and the fill.
+  const Case c = load_case_text(pressed_disc_text("bodies = \"removed\"\n"), "removed_disc.toml");
+  const real screen = 9e-3 - c.open_screen_offset(c.outlets.at(0)), R = 1e-3;
+  Solver s = make_solver(c);
+  const real m0 = fluid_mass(s.particles());
+  const std::size_t nb0 = s.particles().n_boundary, disc_particles = s.groups().at(2).count;
+  std::optional<Failure> f;
+  real right = 0;     // the disc's right edge in the last step before its removal
+  real rho_near = 0;  // the mean density of the fluid within 2 h of its surface then
+  std::size_t fill = 0;
+  while (!f && s.time() < 0.08) {
+    f = s.step();
+    if (!s.groups().at(2).removed) {
+      right = s.groups().at(2).pos.x + R;
+      real sum = 0, count = 0;
+      for (std::size_t i = s.particles().n_boundary; i < s.particle_count(); ++i)
+        if (s.particles().kind[i] == Kind::Fluid &&
+            norm(s.particles().x[i] - s.groups().at(2).pos) < R + 2 * c.h()) {
+          sum += s.particles().rho[i];
+          count += 1;
+        }
+      rho_near = sum / count;
+    }
+    for (const Solver::BodyRemoval& r : s.removed_in_last_step()) {
+      EXPECT_EQ(r.group, 2u);
+      EXPECT_EQ(r.zone, 1u);
+      fill = r.fill_particles;
+      // the fill carries the fluid of the disc's area at the density of the fluid round it (the
+      // channel's pressure compresses it by about 1 % at c = 0.3 m/s)
+      EXPECT_NEAR(r.fill_mass, rho_near * M_PI * R * R, 2e-3 * rho_near * M_PI * R * R);
+    }
+  }
+  ASSERT_FALSE(f.has_value()) << f->what;
+  const RigidGroup& g = s.groups().at(2);
+  ASSERT_TRUE(g.removed) << "the disc was not removed; its right edge at " << right << ", the screen at "
+                         << screen;
+  EXPECT_EQ(g.removed_at, 1);
+  EXPECT_GT(g.removed_time, 0.03);
+  EXPECT_LT(g.removed_time, 0.075);
+  // removed in the step in which its surface reached the line, not before
+  EXPECT_LT(right, screen);
+  EXPECT_GT(right, screen - 0.1 * c.d0);
+  EXPECT_EQ(g.count, 0u);
+  EXPECT_EQ(s.particles().n_boundary, nb0 - disc_particles);
+  // the points of the lattice at least d0/2 inside the disc (radius 4.5 d0: about 64)
+  EXPECT_GE(fill, 50u);
+  EXPECT_LE(fill, 80u);
+  for (std::size_t i = 0; i < s.particles().n_boundary; ++i) EXPECT_NE(s.particles().group[i], 2) << i;
+  // the flow closes over its place: no jet from the fill (the inflow's peak is 7.5 mm/s)
+  real vmax = 0;
+  for (std::size_t i = s.particles().n_boundary; i < s.particle_count(); ++i)
+    if (s.particles().kind[i] == Kind::Fluid) vmax = std::max(vmax, norm(s.particles().v[i]));
+  EXPECT_LT(vmax, 1.2e-2);
+  const auto& fl = s.open_flux();
+  EXPECT_EQ(fl.at(1).bodies_removed, 1);
+  EXPECT_LT(std::fabs(fluid_mass(s.particles()) - m0 - (fl[0].mass - fl[0].backflow_mass) +
+                      (fl[1].mass - fl[1].backflow_mass) - fl[1].body_fill_mass),
+            1e-12 * m0);
+
+  // A checkpoint of this state carries the removal, and a removal that does not fit is refused.
+  const std::vector<OutputMark> marks;
+  const Checkpoint k = decode_checkpoint(
+      encode_checkpoint(CheckpointView{"name = \"x\"", 1, s.time(), s.step_count(), s.counters(), marks,
+                                       s.particles(), s.groups(), s.open_flux()}),
+      "x.bin");
+  ASSERT_TRUE(k.groups.at(2).removed);
+  EXPECT_EQ(k.groups[2].removed_time, g.removed_time);
+  EXPECT_EQ(k.open_flux.at(1).body_fill_mass, fl[1].body_fill_mass);
+  EXPECT_NO_THROW(check_checkpoint_fits_case(k, c, "x.bin"));
+  const auto refused = [&](const Checkpoint& bad, const char* why) {
+    EXPECT_THROW(decode_checkpoint(encode_checkpoint(bad), "x.bin"), io::IoError) << why;
+  };
+  Checkpoint bad = k;
+  bad.groups[2].removed_at = 7;
+  refused(bad, "removed at an open boundary the checkpoint has no flux of");
+  bad = k;
+  bad.groups[2].removed = false;
+  refused(bad, "an outlet index on a body that is not removed");
+  bad = k;
+  bad.groups[0].removed = true;
+  bad.groups[0].removed_at = 1;
+  refused(bad, "a wall removed");
+  bad = k;
+  bad.open_flux[1].body_fill_mass = -1;
+  refused(bad, "negative fill");
+  bad = k;
+  bad.groups[2].removed_at = 0;
+  EXPECT_THROW(check_checkpoint_fits_case(bad, c, "x.bin"), io::IoError) << "removed at the inlet";
+  const Case holds = load_case_text(pressed_disc_text(), "pressed_disc.toml");
+  EXPECT_THROW(check_checkpoint_fits_case(k, holds, "x.bin"), io::IoError)
+      << "removed at an outlet that holds bodies";
+}
+
+TEST(OpenBoundary, ARunResumedAfterABodyWasRemovedIsBitwiseIdentical) {
+  // The checkpoint holds the removed body (its flag, time and outlet) and the boundary block
+  // without its particles; the resumed run repeats the whole one exactly. bodies.csv ends the
+  // disc's rows at its removal, and summary.json lists it.
+  const fs::path dir = cli_test::fresh_dir("removed_resume");
+  const fs::path file = dir / "removed_disc.toml";
+  std::ofstream(file) << pressed_disc_text("bodies = \"removed\"\n");
+  const std::vector<std::string> common{"--quiet",   "--no-plots",
+                                        "--threads", "1",
+                                        "--set",     "output.interval=0.005",
+                                        "--set",     "output.snapshot_interval=0.02"};
+  auto run = [&](const fs::path& out, const std::string& end) {
+    std::vector<std::string> a{"run", file.string(), "--out", out.string(), "--set", "time.end=" + end};
+    a.insert(a.end(), common.begin(), common.end());
+    return cli_test::cli(a);
+  };
+  const auto whole = run(dir / "whole", "0.1");
+  ASSERT_EQ(whole.code, 0) << whole.output;
+  const auto half = run(dir / "half", "0.08");  // the disc is removed at about 0.063 s
+  ASSERT_EQ(half.code, 0) << half.output;
+  const auto resumed = cli_test::cli({"resume", (dir / "half").string(), "--set", "time.end=0.1", "--threads",
+                                      "1", "--quiet", "--no-plots"});
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  for (const char* f : {"open_boundaries.csv", "bodies.csv", "walls.csv"}) {
+    const std::string a = cli_test::read_text(dir / "whole" / f), b = cli_test::read_text(dir / "half" / f);
+    EXPECT_FALSE(a.empty()) << f;
+    EXPECT_TRUE(a == b) << f << " differs after the resume";
+  }
+  EXPECT_TRUE(cli_test::read_text(dir / "whole" / "particles.pvd") ==
+              cli_test::read_text(dir / "half" / "particles.pvd"));
+  const auto index = io::PvdIndex::read(dir / "whole" / "particles.pvd");
+  for (const auto& e : index.entries())
+    EXPECT_TRUE(cli_test::read_text(dir / "whole" / e.file) == cli_test::read_text(dir / "half" / e.file))
+        << e.file;
+  // bodies.csv: the disc's last row is the last output before its removal
+  const io::CsvTable bodies = io::read_csv(dir / "whole" / "bodies.csv");
+  ASSERT_FALSE(bodies.rows.empty());
+  const double last = bodies.rows.back()[bodies.column_index("time")];
+  EXPECT_GT(last, 0.03);
+  EXPECT_LT(last, 0.08);
+  const std::string summary = cli_test::read_text(dir / "whole" / "summary.json");
+  EXPECT_NE(summary.find("\"bodies_removed\": [\n    {"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"outlet\": \"out\""), std::string::npos) << summary;
+  EXPECT_NE(cli_test::read_text(dir / "whole" / "log.txt")
+                .find("body 'disc' reached the screen of outlet 'out' and was removed"),
+            std::string::npos);
 }

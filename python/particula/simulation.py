@@ -190,7 +190,8 @@ class Simulation:
         """The bodies in case order as a dict of arrays (copies): name, motion, position (nb, 2),
         velocity (nb, 2), angle, omega, force (hydrodynamic, per unit depth, N/m; = force_pressure
         + force_viscous), force_collision, torque, torque_collision, mass, inertia, area: the
-        columns of bodies.csv at this instant."""
+        columns of bodies.csv at this instant; and removed (a list of bools: taken out of the run
+        at an outlet with bodies = "removed", its state frozen at zero velocity)."""
         return self._sim.body_states()
 
     def wall_states(self):

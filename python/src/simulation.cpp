@@ -100,8 +100,8 @@ void write_simulation_checkpoint(const Simulation& sim, const fs::path& file) {
   const real t = s.time();
   const std::int64_t step = s.step_count();
   const std::vector<OutputMark> no_marks;
-  write_checkpoint(
-      file, CheckpointView{toml, sim.case_hash, t, step, s.counters(), no_marks, s.particles(), s.groups(), s.open_flux()});
+  write_checkpoint(file, CheckpointView{toml, sim.case_hash, t, step, s.counters(), no_marks, s.particles(),
+                                        s.groups(), s.open_flux()});
 }
 
 /// One step of at most max_dt (0: the stable step), or with `land_at` one that ends exactly at that
@@ -209,13 +209,15 @@ py::dict group_states(const Simulation& sim, bool walls) {
     return v;
   };
   GroupTable t(sel.size());
-  py::list names, motions;
+  py::list names, motions, removed;
   for (const RigidGroup* g : sel) {
     names.append(g->name);
     motions.append(motion_name(g->motion));
+    removed.append(g->removed);  // taken out at an outlet (outlet[].bodies = "removed")
   }
   t.dict()["name"] = names;
   t.dict()["motion"] = motions;
+  if (!walls) t.dict()["removed"] = removed;
   t.vector("position", column([](const RigidGroup& g) { return g.pos; }));
   t.vector("velocity", column([](const RigidGroup& g) { return g.vel; }));
   t.scalar("angle", column([](const RigidGroup& g) { return g.angle; }));
@@ -251,7 +253,8 @@ void register_simulation(py::module_& m) {
       .def_static("from_checkpoint", &from_checkpoint, py::arg("file"), py::arg("overrides"),
                   py::arg("backend"), py::arg("threads"))
       .def("write_checkpoint", &write_simulation_checkpoint, py::arg("file"))
-      .def("step", [](Simulation& sim, real max_dt) { return step(sim, max_dt); }, py::arg("max_dt") = 0.0)
+      .def(
+          "step", [](Simulation& sim, real max_dt) { return step(sim, max_dt); }, py::arg("max_dt") = 0.0)
       .def("run_to", &run_to, py::arg("t"))
       .def_property_readonly("time", [](const Simulation& s) { return s.solver->time(); })
       .def_property_readonly("step_count", [](const Simulation& s) { return s.solver->step_count(); })

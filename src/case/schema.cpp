@@ -5,11 +5,12 @@
 // assignment into Case. Rows are applied in order, so a row may use fields set by earlier rows
 // (fluid.mu uses fluid.rho0). A new array of tables also needs one row in make_sections().
 #include "particula/case/schema.hpp"
-#include "schema_rows.hpp"
 
 #include <algorithm>
 #include <type_traits>
 #include <utility>
+
+#include "schema_rows.hpp"
 
 namespace particula {
 namespace {
@@ -56,10 +57,11 @@ std::vector<KeySpec> make_schema() {
                "Kinematic viscosity (give this or fluid.mu).", field(&Case::nu)),
       real_key("fluid.mu", "Pa s", one_of("viscosity"), gt(0),
                "Dynamic viscosity (give this or fluid.nu); stored as nu = mu / rho0.", dynamic_viscosity()),
-      real_key("fluid.c", "m/s", required(), gt(0),
-               "Artificial speed of sound of the equation of state: at least 10 times the fastest speed of the "
-               "flow (a case setting a speed at or above it is refused).",
-               field(&Case::c)),
+      real_key(
+          "fluid.c", "m/s", required(), gt(0),
+          "Artificial speed of sound of the equation of state: at least 10 times the fastest speed of the "
+          "flow (a case setting a speed at or above it is refused).",
+          field(&Case::c)),
       real_key("fluid.p0", "Pa", def(0.0), ge(0), "Background pressure of the equation of state.",
                field(&Case::p0)),
       vec2_key("fluid.gravity", "m/s^2", def(zero), "Gravitational acceleration.", field(&Case::gravity)),
@@ -89,24 +91,26 @@ std::vector<KeySpec> make_schema() {
                  "or the kernel sums of P.18 (noisy by a few degrees on a perturbed lattice; see "
                  "docs/method-notes.md).",
                  &Case::normals),
-      choice_key("numerics.force", {"paper", "momentum"}, def(std::string{"momentum"}),
-                 "Hydrodynamic loads on bodies and walls: `momentum` takes them from the momentum balance of "
-                 "the fluid in a band of 5 h around each solid, with fluid masses that fill the region outside "
-                 "the bodies exactly (second order, in balance with the momentum put into the fluid); `paper` "
-                 "sums the surface traction over the surface particles (P.26-P.27) with the lattice masses of "
-                 "the paper's fill, to reproduce its results (docs/method-notes.md, \"Forces on solids\").",
-                 &Case::force),
+      choice_key(
+          "numerics.force", {"paper", "momentum"}, def(std::string{"momentum"}),
+          "Hydrodynamic loads on bodies and walls: `momentum` takes them from the momentum balance of "
+          "the fluid in a band of 5 h around each solid, with fluid masses that fill the region outside "
+          "the bodies exactly (second order, in balance with the momentum put into the fluid); `paper` "
+          "sums the surface traction over the surface particles (P.26-P.27) with the lattice masses of "
+          "the paper's fill, to reproduce its results (docs/method-notes.md, \"Forces on solids\").",
+          &Case::force),
       real_key("numerics.rhie_chow_factor", "-", def(1.0), closed(0, 10),
                "Scale of the Rhie-Chow pressure stabilisation in the continuity equation.",
                field(&Case::rhie_chow_factor)),
       real_key("numerics.shifting_beta", "-", def(0.05), closed(0, 0.2),
                "Strength of particle shifting, which keeps the particle distribution uniform.",
                field(&Case::shifting_beta)),
-      real_key("numerics.odd_even_damping", "-", def(0.005), closed(0, 0.05),
-               "Strength alpha of the damping of odd-even (checkerboard) velocity modes, kappa = alpha c h times "
-               "the difference of the compact and the wide Laplacian of V (zero for quadratic fields; "
-               "docs/method-notes.md). 0 is the paper's scheme.",
-               field(&Case::odd_even_damping)),
+      real_key(
+          "numerics.odd_even_damping", "-", def(0.005), closed(0, 0.05),
+          "Strength alpha of the damping of odd-even (checkerboard) velocity modes, kappa = alpha c h times "
+          "the difference of the compact and the wide Laplacian of V (zero for quadratic fields; "
+          "docs/method-notes.md). 0 is the paper's scheme.",
+          field(&Case::odd_even_damping)),
       real_key("numerics.surface_guard", "-", def(0.25), closed(0, 0.45),
                "Keep-out distance of fluid particles from walls and body surfaces, in d0: a fluid particle "
                "closer than this is put back and loses its velocity into the surface (0 turns the guard off; "
@@ -116,7 +120,8 @@ std::vector<KeySpec> make_schema() {
                "Gap between two facing surfaces, in d0, below which the fluid between them is an unresolved "
                "film: the particles' volume change is left out of the continuity equation (fully below half "
                "this gap), so that a closing or opening gap builds no spurious cushion or suction; the "
-               "lubrication force of the contact model stands for the film (0 turns it off; docs/method-notes.md).",
+               "lubrication force of the contact model stands for the film (0 turns it off; "
+               "docs/method-notes.md).",
                field(&Case::film_gap)),
       int_key("numerics.wall_pressure_sweeps", def(std::int64_t{1}), closed(1, 50),
               "Sweeps of the single-layer wall pressure update per step.",
@@ -152,31 +157,34 @@ std::vector<KeySpec> make_schema() {
       real_key("guard.rho_max_ratio", "-", def(2.0), gt(1),
                "The run stops when a density exceeds this multiple of rho0.", field(&Case::rho_max_ratio)),
       // [validation]
-      choice_key("validation.exact", {"none", "couette", "poiseuille", "spin_up"}, def(std::string{"none"}),
-                 "Exact solution to compare with: probes get vx_exact and vy_exact columns and summary.json the L2 "
-                 "profile error. couette, poiseuille: start-up channel flows along x between walls at domain.min.y "
-                 "and domain.max.y (error of vx); spin_up: fluid at rest in a circular container (one full-circle "
-                 "arc wall) that starts turning at wall[].omega about its centre at t = 0 (error of the velocity "
-                 "vector).",
-                 &Case::exact),
+      choice_key(
+          "validation.exact", {"none", "couette", "poiseuille", "spin_up"}, def(std::string{"none"}),
+          "Exact solution to compare with: probes get vx_exact and vy_exact columns and summary.json the L2 "
+          "profile error. couette, poiseuille: start-up channel flows along x between walls at domain.min.y "
+          "and domain.max.y (error of vx); spin_up: fluid at rest in a circular container (one full-circle "
+          "arc wall) that starts turning at wall[].omega about its centre at t = 0 (error of the velocity "
+          "vector).",
+          &Case::exact),
       // [analysis]
-      vec2_key("analysis.reference_velocity", "m/s", def(zero, "[0, 0] (none)"),
-               "Free-stream velocity U relative to the bodies, for coefficients.csv: the drag is the hydrodynamic "
-               "force along U, the lift the force 90 degrees counter-clockwise from it, C_D = F_D / (0.5 rho0 "
-               "|U|^2 L), C_L = F_L / (0.5 rho0 |U|^2 L), C_M = torque / (0.5 rho0 |U|^2 L^2), Re = |U| L / nu "
-               "(per unit depth). A body's own body[].reference_velocity replaces it.",
-               field(&Case::reference_velocity)),
+      vec2_key(
+          "analysis.reference_velocity", "m/s", def(zero, "[0, 0] (none)"),
+          "Free-stream velocity U relative to the bodies, for coefficients.csv: the drag is the hydrodynamic "
+          "force along U, the lift the force 90 degrees counter-clockwise from it, C_D = F_D / (0.5 rho0 "
+          "|U|^2 L), C_L = F_L / (0.5 rho0 |U|^2 L), C_M = torque / (0.5 rho0 |U|^2 L^2), Re = |U| L / nu "
+          "(per unit depth). A body's own body[].reference_velocity replaces it.",
+          field(&Case::reference_velocity)),
       real_key("analysis.reference_length", "m", def(0.0, "0 (none)"), ge(0),
                "Reference length L of the coefficients (e.g. a cylinder's diameter). A body's own "
                "body[].reference_length replaces it.",
                field(&Case::reference_length)),
       // [collision]
-      choice_key("collision.model", {"spring_dashpot", "paper"}, def(std::string{"spring_dashpot"}),
-                 "Contact law between solids: a linear spring and dashpot whose stiffness is derived from the "
-                 "impact speed (no tuning), with damping from collision.restitution, optional friction and a "
-                 "lubrication correction, or the paper's repulsion P.38 (needs collision.stiffness); see "
-                 "docs/method-notes.md, Contacts.",
-                 &Case::collision_model),
+      choice_key(
+          "collision.model", {"spring_dashpot", "paper"}, def(std::string{"spring_dashpot"}),
+          "Contact law between solids: a linear spring and dashpot whose stiffness is derived from the "
+          "impact speed (no tuning), with damping from collision.restitution, optional friction and a "
+          "lubrication correction, or the paper's repulsion P.38 (needs collision.stiffness); see "
+          "docs/method-notes.md, Contacts.",
+          &Case::collision_model),
       real_key("collision.stiffness", "N/m^2; paper: N/m^4",
                def(0.0, "0 (spring_dashpot: derived; paper: no repulsion)"), ge(0),
                "spring_dashpot: normal stiffness k_n, force per unit depth per metre of overlap (0 = derived "
@@ -209,54 +217,65 @@ std::vector<KeySpec> make_schema() {
       // [[wall]]
       string_key("wall[].name", per_index(wall_name, "wall<k> (k = index from 0)"),
                  "Name of the wall in output and messages.", member(W, &WallSpec::name), /*name=*/true),
-      choice_member("wall[].shape", {"segment", "arc"}, def(std::string{"segment"}),
-                    "A straight segment (from, to) or a circular arc (center, radius, start_angle, end_angle).",
-                    W, &WallSpec::shape),
+      choice_member(
+          "wall[].shape", {"segment", "arc"}, def(std::string{"segment"}),
+          "A straight segment (from, to) or a circular arc (center, radius, start_angle, end_angle).", W,
+          &WallSpec::shape),
       used_when(vec2_key("wall[].from", "m", required(),
                          "Start of the segment; the fluid lies on the left walking from `from` to `to`.",
                          member(W, &WallSpec::from)),
                 wall_shape, {"segment"}),
       used_when(vec2_key("wall[].to", "m", required(), "End of the segment.", member(W, &WallSpec::to)),
                 wall_shape, {"segment"}),
-      used_when(vec2_key("wall[].center", "m", required(), "Centre of the arc's circle.", member(W, &WallSpec::center)),
+      used_when(vec2_key("wall[].center", "m", required(), "Centre of the arc's circle.",
+                         member(W, &WallSpec::center)),
                 wall_shape, {"arc"}),
-      used_when(real_key("wall[].radius", "m", required(), gt(0), "Radius of the arc.", member(W, &WallSpec::radius)),
+      used_when(real_key("wall[].radius", "m", required(), gt(0), "Radius of the arc.",
+                         member(W, &WallSpec::radius)),
                 wall_shape, {"arc"}),
       used_when(real_key("wall[].start_angle", "rad", required(), any(),
                          "Angle of the arc's start, counter-clockwise from +x about the centre.",
                          member(W, &WallSpec::start_angle)),
                 wall_shape, {"arc"}),
-      used_when(real_key("wall[].end_angle", "rad", required(), any(),
-                         "Angle of the arc's end. end_angle > start_angle turns counter-clockwise, with the fluid "
-                         "inside the circle (a container); end_angle < start_angle clockwise, fluid outside; "
-                         "|end_angle - start_angle| = 2 pi (6.283185307179586) is a full circle.",
-                         member(W, &WallSpec::end_angle)),
-                wall_shape, {"arc"}),
-      vec2_key("wall[].velocity", "m/s", def(zero), "Sliding velocity of a segment; must be parallel to to - from.",
+      used_when(
+          real_key("wall[].end_angle", "rad", required(), any(),
+                   "Angle of the arc's end. end_angle > start_angle turns counter-clockwise, with the fluid "
+                   "inside the circle (a container); end_angle < start_angle clockwise, fluid outside; "
+                   "|end_angle - start_angle| = 2 pi (6.283185307179586) is a full circle.",
+                   member(W, &WallSpec::end_angle)),
+          wall_shape, {"arc"}),
+      vec2_key("wall[].velocity", "m/s", def(zero),
+               "Sliding velocity of a segment; must be parallel to to - from.",
                member(W, &WallSpec::velocity)),
       real_key("wall[].omega", "rad/s", def(0.0), any(),
-               "Rate at which the wall turns rigidly about wall[].pivot (counter-clockwise), impulsively from t = 0: "
-               "a rotating drum, the outer cylinder of a Couette cell. Walls that share an end point turn together.",
+               "Rate at which the wall turns rigidly about wall[].pivot (counter-clockwise), impulsively "
+               "from t = 0: "
+               "a rotating drum, the outer cylinder of a Couette cell. Walls that share an end point turn "
+               "together.",
                member(W, &WallSpec::omega)),
-      vec2_key("wall[].pivot", "m", def(zero), "Point the wall turns about when omega is not 0 (an arc turning "
+      vec2_key("wall[].pivot", "m", def(zero),
+               "Point the wall turns about when omega is not 0 (an arc turning "
                "about its own centre: its center).",
                member(W, &WallSpec::pivot)),
       // [[probe]]
       string_key("probe[].name", required(),
                  "Name of the probe; it writes `probe_<name>.csv` (a line probe also `flow_<name>.csv`).",
                  member(P, &ProbeSpec::name), /*name=*/true, /*unique=*/true),
-      choice_member("probe[].kind", {"line", "points"}, def(std::string{"line"}),
-                    "A line of equally spaced points (from, to, points), which also writes its flow rate, or a "
-                    "list of points (at).",
-                    P, &ProbeSpec::kind),
+      choice_member(
+          "probe[].kind", {"line", "points"}, def(std::string{"line"}),
+          "A line of equally spaced points (from, to, points), which also writes its flow rate, or a "
+          "list of points (at).",
+          P, &ProbeSpec::kind),
       used_when(vec2_key("probe[].from", "m", required(), "First point of the probe line.",
                          member(P, &ProbeSpec::from)),
                 "probe[].kind", {"line"}),
-      used_when(vec2_key("probe[].to", "m", required(), "Last point of the probe line.", member(P, &ProbeSpec::to)),
-                "probe[].kind", {"line"}),
-      used_when(int_key("probe[].points", required(), closed(2, 1e6),
-                        "Number of equally spaced points, both ends included.", member(P, &ProbeSpec::points)),
-                "probe[].kind", {"line"}),
+      used_when(
+          vec2_key("probe[].to", "m", required(), "Last point of the probe line.", member(P, &ProbeSpec::to)),
+          "probe[].kind", {"line"}),
+      used_when(
+          int_key("probe[].points", required(), closed(2, 1e6),
+                  "Number of equally spaced points, both ends included.", member(P, &ProbeSpec::points)),
+          "probe[].kind", {"line"}),
       used_when(vec2_list_key("probe[].at", "m", required(), 1, "The probe's points [[x, y], ...].",
                               member(P, &ProbeSpec::at)),
                 "probe[].kind", {"points"}),
@@ -288,14 +307,15 @@ std::vector<KeySpec> make_schema() {
                               "particle); a non-zero angle rotates them about their area centroid.",
                               member(B, &BodySpec::vertices)),
                 shape, {"polygon"}),
-      used_when(row("body[].holes", ValueType::Vec2Loops, "m", def(std::vector<std::vector<Vec2>>{}, "none"), any(),
-                    "Holes of a polygon, each a list of vertices [[x, y], ...] like `vertices` (world coordinates "
-                    "at t = 0, either orientation): a hole lies inside the polygon, clear of its outline and of "
-                    "the other holes by at least 10 d0 of solid, and the fluid fills it (a container as a body: "
-                    "a pipe, a ring, a perforated plate). The solid between two of its boundaries counts as the "
-                    "body's smallest width.",
-                    polygon_holes()),
-                shape, {"polygon"}),
+      used_when(
+          row("body[].holes", ValueType::Vec2Loops, "m", def(std::vector<std::vector<Vec2>>{}, "none"), any(),
+              "Holes of a polygon, each a list of vertices [[x, y], ...] like `vertices` (world coordinates "
+              "at t = 0, either orientation): a hole lies inside the polygon, clear of its outline and of "
+              "the other holes by at least 10 d0 of solid, and the fluid fills it (a container as a body: "
+              "a pipe, a ring, a perforated plate). The solid between two of its boundaries counts as the "
+              "body's smallest width.",
+              polygon_holes()),
+          shape, {"polygon"}),
       real_key("body[].angle", "rad", def(0.0), any(),
                "Orientation at t = 0, counter-clockwise from the body frame (a half_disc's round side faces "
                "+x at angle 0).",
@@ -336,30 +356,35 @@ std::vector<KeySpec> make_schema() {
       string_key("inlet[].name", per_index(inlet_name, "inlet<k> (k = index from 0)"),
                  "Name of the inlet in output and messages, unique among all inlets and outlets.",
                  member(I, &OpenSpec::name), /*name=*/true, /*unique=*/true),
-      vec2_key("inlet[].from", "m", required(),
-               "Start of the inlet segment, on an edge of the domain; the fluid lies on the left walking from "
-               "`from` to `to`, as for walls.",
-               member(I, &OpenSpec::from)),
+      vec2_key(
+          "inlet[].from", "m", required(),
+          "Start of the inlet segment, on an edge of the domain; the fluid lies on the left walking from "
+          "`from` to `to`, as for walls.",
+          member(I, &OpenSpec::from)),
       vec2_key("inlet[].to", "m", required(), "End of the inlet segment.", member(I, &OpenSpec::to)),
-      choice_member("inlet[].profile", {"uniform", "parabolic", "table"}, def(std::string{"uniform"}),
-                    "Inflow speed across the segment: the same everywhere (uniform), a parabola that is 0 at both "
-                    "ends and `velocity` in the middle (parabolic), or given by `table`.",
-                    I, &OpenSpec::profile),
+      choice_member(
+          "inlet[].profile", {"uniform", "parabolic", "table"}, def(std::string{"uniform"}),
+          "Inflow speed across the segment: the same everywhere (uniform), a parabola that is 0 at both "
+          "ends and `velocity` in the middle (parabolic), or given by `table`.",
+          I, &OpenSpec::profile),
       used_when(real_key("inlet[].velocity", "m/s", required(), gt(0),
                          "The uniform speed, or the parabola's peak, of the flow into the domain along the "
                          "segment's inward normal.",
                          member(I, &OpenSpec::velocity)),
                 inlet_profile, {"uniform", "parabolic"}),
-      used_when(vec2_list_key("inlet[].table", "m, m/s", required(), 2,
-                              "Inflow speed across the segment as rows [[s, u], ...]: s the distance from `from` "
-                              "along the segment (strictly increasing, within [0, width]), u the speed into the "
-                              "domain (>= 0, at least one > 0), linear in between and held at the first and last rows beyond them.",
-                              member(I, &OpenSpec::table)),
-                inlet_profile, {"table"}),
-      real_key("inlet[].ramp_time", "s", def(0.0, "0 (no ramp)"), ge(0),
-               "Time T over which the inflow starts: the speed is multiplied by (1 - cos(pi t / T)) / 2 until T, "
-               "which avoids the pressure wave of an impulsive start.",
-               member(I, &OpenSpec::ramp_time)),
+      used_when(
+          vec2_list_key("inlet[].table", "m, m/s", required(), 2,
+                        "Inflow speed across the segment as rows [[s, u], ...]: s the distance from `from` "
+                        "along the segment (strictly increasing, within [0, width]), u the speed into the "
+                        "domain (>= 0, at least one > 0), linear in between and held at the first and last "
+                        "rows beyond them.",
+                        member(I, &OpenSpec::table)),
+          inlet_profile, {"table"}),
+      real_key(
+          "inlet[].ramp_time", "s", def(0.0, "0 (no ramp)"), ge(0),
+          "Time T over which the inflow starts: the speed is multiplied by (1 - cos(pi t / T)) / 2 until T, "
+          "which avoids the pressure wave of an impulsive start.",
+          member(I, &OpenSpec::ramp_time)),
       int_key("inlet[].layers", def(std::int64_t{0}, "0 (= ceil(h / d0) + 1)"), closed(0, 20),
               "Rows of buffer particles outside the domain behind the segment, d0 apart: 0 (the default, "
               "ceil(h / d0) + 1, so that the buffer is deeper than h) or 2 to 20.",
@@ -368,15 +393,23 @@ std::vector<KeySpec> make_schema() {
       string_key("outlet[].name", per_index(outlet_name, "outlet<k> (k = index from 0)"),
                  "Name of the outlet in output and messages, unique among all inlets and outlets.",
                  member(O, &OpenSpec::name), /*name=*/true, /*unique=*/true),
-      vec2_key("outlet[].from", "m", required(),
-               "Start of the outlet segment, on an edge of the domain; the fluid lies on the left walking from "
-               "`from` to `to`, as for walls.",
-               member(O, &OpenSpec::from)),
+      vec2_key(
+          "outlet[].from", "m", required(),
+          "Start of the outlet segment, on an edge of the domain; the fluid lies on the left walking from "
+          "`from` to `to`, as for walls.",
+          member(O, &OpenSpec::from)),
       vec2_key("outlet[].to", "m", required(), "End of the outlet segment.", member(O, &OpenSpec::to)),
       real_key("outlet[].pressure", "Pa", def(0.0), any(),
                "Pressure on the segment relative to the background: the fluid's pressure there is "
                "fluid.p0 + pressure.",
                member(O, &OpenSpec::pressure)),
+      choice_member(
+          "outlet[].bodies", {"held", "removed"}, def(std::string{"held"}),
+          "What the outlet does with a free or prescribed body carried to it: `held`, its screen (a line "
+          "max(L_b + h, 5 h) inside the segment) stops the body like a fixed wall; `removed`, the body is "
+          "taken out of the run when its surface reaches that line, and fluid particles at rest relative "
+          "to it fill the place it held (logged, and listed in summary.json).",
+          O, &OpenSpec::bodies),
       int_key("outlet[].layers", def(std::int64_t{0}, "0 (= ceil(h / d0) + 1)"), closed(0, 20),
               "Rows of buffer particles outside the domain behind the segment, d0 apart: 0 (the default, "
               "ceil(h / d0) + 1, so that the buffer is deeper than h) or 2 to 20.",
@@ -393,7 +426,8 @@ SectionSpec array_section(std::string name, std::vector<E> Case::*m, std::string
 
 /// [[inlet]] or [[outlet]]: an array of OpenSpec whose elements all get `kind` when it is sized
 /// (the kind is the section, not a key).
-SectionSpec open_section(std::string name, std::vector<OpenSpec> Case::*m, OpenKind kind, std::string meaning) {
+SectionSpec open_section(std::string name, std::vector<OpenSpec> Case::*m, OpenKind kind,
+                         std::string meaning) {
   return {std::move(name), true, std::move(meaning), [m](const Case& c) { return (c.*m).size(); },
           [m, kind](Case& c, std::size_t n) {
             (c.*m).resize(n);
@@ -412,73 +446,83 @@ std::vector<SectionSpec> make_sections() {
       table_section("resolution", "Particle spacing and kernel size."),
       table_section("fluid", "Fluid properties and forces on the fluid."),
       table_section("time", "Simulated time span and time-step control."),
-      table_section("numerics",
-                    "Discretisation schemes and their coefficients. The defaults are meant to work unchanged: "
-                    "they run the shipped cases and the robustness suite of `particula validate --group "
-                    "robustness` (untuned cases: piles of bodies, flows past bodies at Re 0.1 to 100, closing "
-                    "gaps; docs/validation.md). Change one only for a reason: `shifting_beta` (0.05, the top of the paper's range: "
-                    "lower values let particles pile into chains at the stagnation point between approaching "
-                    "bodies) down to the paper's 0.01-0.02 to reproduce its cases, or when shifting's "
-                    "smoothing of a sharp velocity gradient matters; `odd_even_damping` up (to 0.01) "
-                    "if column-wise alternating velocities appear at a high cell Reynolds number c d0 / nu, 0 "
-                    "to reproduce the paper's scheme; `surface_guard` and `film_gap` 0 only to study the scheme without them "
-                    "(guard_events in summary.json count its interventions: many events mean the flow is "
-                    "under-resolved next to a surface); `rhie_chow_factor` above 1 only to reproduce older "
-                    "runs; `normals = \"kernel\"` and `laplacian = \"morris\"` and `boundary = \"dummy\"` are "
-                    "the paper's baselines for comparison. A run that stops with exit 3 names the likely cause "
-                    "and the keys to look at."),
+      table_section(
+          "numerics",
+          "Discretisation schemes and their coefficients. The defaults are meant to work unchanged: "
+          "they run the shipped cases and the robustness suite of `particula validate --group "
+          "robustness` (untuned cases: piles of bodies, flows past bodies at Re 0.1 to 100, closing "
+          "gaps; docs/validation.md). Change one only for a reason: `shifting_beta` (0.05, the top of the "
+          "paper's range: "
+          "lower values let particles pile into chains at the stagnation point between approaching "
+          "bodies) down to the paper's 0.01-0.02 to reproduce its cases, or when shifting's "
+          "smoothing of a sharp velocity gradient matters; `odd_even_damping` up (to 0.01) "
+          "if column-wise alternating velocities appear at a high cell Reynolds number c d0 / nu, 0 "
+          "to reproduce the paper's scheme; `surface_guard` and `film_gap` 0 only to study the scheme "
+          "without them "
+          "(guard_events in summary.json count its interventions: many events mean the flow is "
+          "under-resolved next to a surface); `rhie_chow_factor` above 1 only to reproduce older "
+          "runs; `normals = \"kernel\"` and `laplacian = \"morris\"` and `boundary = \"dummy\"` are "
+          "the paper's baselines for comparison. A run that stops with exit 3 names the likely cause "
+          "and the keys to look at."),
       table_section("initial", "Initial particle arrangement and velocity field."),
       table_section("output", "What is written to the run directory, and how often."),
       table_section("guard", "Bounds that stop a run that is blowing up."),
       table_section("validation", "Comparison with an exact solution."),
-      table_section("analysis",
-                    "References of the dimensionless coefficients: a body whose reference velocity and length "
-                    "are both known (from this table or its own [[body]] keys) gets rows in coefficients.csv "
-                    "(Re, C_D, C_L, C_M at every output.interval; README, \"What the output files hold\")."),
-      table_section("collision",
-                    "Contacts between bodies and between bodies and walls: a spring-dashpot law that needs no "
-                    "tuning (default), or the paper's repulsion P.38 generalised to the closest-surface "
-                    "distance."),
-      array_section("wall", &Case::walls,
-                    "Walls, one [[wall]] table each: straight segments and circular arcs, joined head to tail into "
-                    "chains; list a closed container counter-clockwise. The fluid fills the region on the left of "
-                    "the walls (and up to the domain's edges). Checked at load: a wall's chain ends only on the "
-                    "domain's edge or where it closes; a wall on an edge of the domain has the fluid (its left side) inside; walls that meet "
-                    "share an end point, one's `to` being the next one's `from`, at most two per point (ends "
-                    "closer than d0/2 must be equal); a wall is at least d0/2 long; no wall lies on a periodic "
-                    "edge, overlaps another on the same line, or comes within d0/2 of a body (a fixed body may "
-                    "stand on a wall with a flat side); a wall with a velocity slides along itself, so it must run "
-                    "along a periodic axis and share no end point with another wall; a turning wall stays in the "
-                    "domain and shares end points only with walls turning with it."),
-      array_section("probe", &Case::probes,
-                    "Probes, one [[probe]] table each: velocity and pressure interpolated at a line of points or "
-                    "at a list of points, by moving least squares over the fluid and surface particles (exact for "
-                    "quadratic fields: a point on a wall reads the wall's velocity). A line probe also writes its "
-                    "flow rate. Checked at load: every point inside the domain, the points of a line at least "
-                    "d0/100 apart (only a probe of length 0 may have 2 points at one place), at most 1e6 points "
-                    "over all probes (`info` counts their memory)."),
+      table_section(
+          "analysis",
+          "References of the dimensionless coefficients: a body whose reference velocity and length "
+          "are both known (from this table or its own [[body]] keys) gets rows in coefficients.csv "
+          "(Re, C_D, C_L, C_M at every output.interval; README, \"What the output files hold\")."),
+      table_section(
+          "collision",
+          "Contacts between bodies and between bodies and walls: a spring-dashpot law that needs no "
+          "tuning (default), or the paper's repulsion P.38 generalised to the closest-surface "
+          "distance."),
+      array_section(
+          "wall", &Case::walls,
+          "Walls, one [[wall]] table each: straight segments and circular arcs, joined head to tail into "
+          "chains; list a closed container counter-clockwise. The fluid fills the region on the left of "
+          "the walls (and up to the domain's edges). Checked at load: a wall's chain ends only on the "
+          "domain's edge or where it closes; a wall on an edge of the domain has the fluid (its left side) "
+          "inside; walls that meet "
+          "share an end point, one's `to` being the next one's `from`, at most two per point (ends "
+          "closer than d0/2 must be equal); a wall is at least d0/2 long; no wall lies on a periodic "
+          "edge, overlaps another on the same line, or comes within d0/2 of a body (a fixed body may "
+          "stand on a wall with a flat side); a wall with a velocity slides along itself, so it must run "
+          "along a periodic axis and share no end point with another wall; a turning wall stays in the "
+          "domain and shares end points only with walls turning with it."),
+      array_section(
+          "probe", &Case::probes,
+          "Probes, one [[probe]] table each: velocity and pressure interpolated at a line of points or "
+          "at a list of points, by moving least squares over the fluid and surface particles (exact for "
+          "quadratic fields: a point on a wall reads the wall's velocity). A line probe also writes its "
+          "flow rate. Checked at load: every point inside the domain, the points of a line at least "
+          "d0/100 apart (only a probe of length 0 may have 2 points at one place), at most 1e6 points "
+          "over all probes (`info` counts their memory)."),
       array_section("body", &Case::bodies,
                     "Rigid bodies, one [[body]] table each: free, fixed or with prescribed motion. The keys "
                     "marked \"for shape\" or \"for motion\" are used by those shapes or motions only, and "
                     "giving them for another is an error."),
-      open_section("inlet", &Case::inlets, OpenKind::Inlet,
-                   "Inlets, one [[inlet]] table each: a straight segment on an edge of the domain where fluid "
-                   "enters with a prescribed speed along the inward normal (uniform, parabolic or from a table, "
-                   "optionally ramped up), fed by `layers` rows of buffer particles outside the domain behind it. "
-                   "Checked at load: the segment lies on an edge of the domain that is not periodic, with the "
-                   "fluid (its left side) inside; it is at least 4 d0 long; each end is a corner of the domain or "
-                   "the end of a wall; no wall runs along it and no wall that slides or turns ends on it; it "
-                   "overlaps no other inlet or outlet; the case has an outlet at least L_b + 2 h away (L_b = "
-                   "layers d0, the larger of the two); numerics.boundary is \"single_layer\"; every body starts on "
-                   "the fluid side of the boundary's screen, at least the contact distance from it. The screen "
-                   "is a line parallel to the segment, max(L_b + h, 5 h with numerics.force = \"momentum\") "
-                   "inside the fluid, that free bodies meet like a fixed wall and the fluid passes (a "
-                   "distributor plate, a sieve): it keeps bodies clear of the fluid that sets the buffer. Open "
-                   "boundaries run on the CPU backend only (for now)."),
-      open_section("outlet", &Case::outlets, OpenKind::Outlet,
-                   "Outlets, one [[outlet]] table each: a straight segment on an edge of the domain where fluid "
-                   "leaves at a prescribed pressure, with `layers` rows of buffer particles outside the domain "
-                   "behind it. Checked at load as inlets (an outlet needs no inlet)."),
+      open_section(
+          "inlet", &Case::inlets, OpenKind::Inlet,
+          "Inlets, one [[inlet]] table each: a straight segment on an edge of the domain where fluid "
+          "enters with a prescribed speed along the inward normal (uniform, parabolic or from a table, "
+          "optionally ramped up), fed by `layers` rows of buffer particles outside the domain behind it. "
+          "Checked at load: the segment lies on an edge of the domain that is not periodic, with the "
+          "fluid (its left side) inside; it is at least 4 d0 long; each end is a corner of the domain or "
+          "the end of a wall; no wall runs along it and no wall that slides or turns ends on it; it "
+          "overlaps no other inlet or outlet; the case has an outlet at least L_b + 2 h away (L_b = "
+          "layers d0, the larger of the two); numerics.boundary is \"single_layer\"; every body starts on "
+          "the fluid side of the boundary's screen, at least the contact distance from it. The screen "
+          "is a line parallel to the segment, max(L_b + h, 5 h with numerics.force = \"momentum\") "
+          "inside the fluid, that free bodies meet like a fixed wall and the fluid passes (a "
+          "distributor plate, a sieve): it keeps bodies clear of the fluid that sets the buffer. Open "
+          "boundaries run on the CPU backend only (for now)."),
+      open_section(
+          "outlet", &Case::outlets, OpenKind::Outlet,
+          "Outlets, one [[outlet]] table each: a straight segment on an edge of the domain where fluid "
+          "leaves at a prescribed pressure, with `layers` rows of buffer particles outside the domain "
+          "behind it. Checked at load as inlets (an outlet needs no inlet)."),
   };
 }
 

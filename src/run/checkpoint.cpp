@@ -1,6 +1,7 @@
 #include "particula/run/checkpoint.hpp"
 
 #include <fmt/format.h>
+#include <toml++/toml.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +9,6 @@
 #include <functional>
 #include <limits>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "particula/io/atomic_file.hpp"
 #include "particula/io/binary.hpp"
@@ -24,10 +24,10 @@ static_assert(checkpoint_detail::aggregate_field_count<RigidGroup>() == kRigidGr
               "RigidGroup changed: update rigid_group_fields() and kRigidGroupFields in run/checkpoint.hpp");
 static_assert(checkpoint_detail::aggregate_field_count<SolverCounters>() == kSolverCountersFields,
               "SolverCounters changed: update solver_counters_fields() and kSolverCountersFields");
-static_assert(sizeof(Particles) ==
-                  sizeof(std::size_t) + sizeof(std::int64_t) + (kParticlesFields - 2) * sizeof(std::vector<real>),
+static_assert(sizeof(Particles) == sizeof(std::size_t) + sizeof(std::int64_t) +
+                                       (kParticlesFields - 2) * sizeof(std::vector<real>),
               "Particles changed: update particles_fields() and kParticlesFields in run/checkpoint.hpp");
-static_assert(sizeof(RigidGroup) == 280,
+static_assert(sizeof(RigidGroup) == 296,
               "RigidGroup changed: update rigid_group_fields(), kRigidGroupFields and this size "
               "(run/checkpoint.hpp), then bump kCheckpointVersion");
 static_assert(sizeof(SolverCounters) == kSolverCountersFields * sizeof(std::int64_t),
@@ -72,20 +72,24 @@ bool finite(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 /// Every index and count of a checkpoint checked against the others, so that nothing the solver
 /// indexes with them can point outside its arrays, and every value it computes with is finite.
 void check_consistency(const Checkpoint& c, const std::string& what) {
-  auto fail = [&](const std::string& why) { throw io::IoError(fmt::format("{}: inconsistent content ({})", what, why)); };
+  auto fail = [&](const std::string& why) {
+    throw io::IoError(fmt::format("{}: inconsistent content ({})", what, why));
+  };
   const Particles& P = c.particles;
   const std::size_t n = P.x.size(), nb = P.n_boundary;
   if (!std::isfinite(c.time) || c.time < 0 || c.step < 0) fail("time or step");
-  for (std::int64_t counter : {c.counters.singular_B, c.counters.singular_Bhat, c.counters.wall_pressure_kept,
-                               c.counters.wall_pressure_extrapolated, c.counters.normal_fallback,
-                               c.counters.surface_pushed, c.counters.gap_squeezed, c.counters.isolated_left_out,
-                               c.counters.open_fit_fallback})
+  for (std::int64_t counter :
+       {c.counters.singular_B, c.counters.singular_Bhat, c.counters.wall_pressure_kept,
+        c.counters.wall_pressure_extrapolated, c.counters.normal_fallback, c.counters.surface_pushed,
+        c.counters.gap_squeezed, c.counters.isolated_left_out, c.counters.open_fit_fallback})
     if (counter < 0) fail("negative guard counter");
   if (nb > n) fail("more boundary particles than particles");
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) fail("too many particles");
-  for (std::size_t size : {P.v.size(), P.rho.size(), P.p.size(), P.m.size(), P.kind.size(), P.group.size(), P.id.size()})
+  for (std::size_t size :
+       {P.v.size(), P.rho.size(), P.p.size(), P.m.size(), P.kind.size(), P.group.size(), P.id.size()})
     if (size != n) fail("per-particle arrays of different sizes");
-  for (std::size_t size : {P.local.size(), P.normal_local.size(), P.ds.size(), P.acc.size(), P.normal.size(), P.source.size()})
+  for (std::size_t size :
+       {P.local.size(), P.normal_local.size(), P.ds.size(), P.acc.size(), P.normal.size(), P.source.size()})
     if (size != nb) fail("boundary arrays of the wrong size");
 
   // Rigid groups: contiguous ranges covering the boundary block in order.
@@ -93,11 +97,17 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
   std::size_t next_first = 0;
   for (std::size_t k = 0; k < n_groups; ++k) {
     const RigidGroup& g = c.groups[k];
-    if (g.motion != Motion::Fixed && g.motion != Motion::Prescribed && g.motion != Motion::Free) fail("group motion");
-    if (g.first != next_first || g.count > nb - std::min(g.first, nb)) fail(fmt::format("particle range of rigid group {}", k));
+    if (g.motion != Motion::Fixed && g.motion != Motion::Prescribed && g.motion != Motion::Free)
+      fail("group motion");
+    if (g.first != next_first || g.count > nb - std::min(g.first, nb))
+      fail(fmt::format("particle range of rigid group {}", k));
     next_first = g.first + g.count;
     if (g.is_wall ? g.body != -1 : g.body < 0) fail(fmt::format("body index of rigid group {}", k));
     if (g.is_wall && g.motion == Motion::Free) fail(fmt::format("free wall (rigid group {})", k));
+    if (g.removed ? g.is_wall || g.count != 0 || g.removed_at < 0 ||
+                        static_cast<std::size_t>(g.removed_at) >= c.open_flux.size()
+                  : g.removed_at != -1)
+      fail(fmt::format("removal of rigid group {}", k));
   }
   if (next_first != nb) fail("the rigid groups do not cover the boundary particles");
   for (std::size_t k = 0; k + 1 < n_groups; ++k)
@@ -106,7 +116,8 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
     if (!c.groups[k].is_wall) {
       std::size_t walls = 0;
       while (walls < n_groups && c.groups[walls].is_wall) ++walls;
-      if (c.groups[k].body != static_cast<int>(k - walls)) fail(fmt::format("body index of rigid group {}", k));
+      if (c.groups[k].body != static_cast<int>(k - walls))
+        fail(fmt::format("body index of rigid group {}", k));
     }
 
   // Particles: kinds and groups by block, dummy sources within their group, ids unique and
@@ -119,12 +130,15 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
       if (P.kind[i] != Kind::Boundary && P.kind[i] != Kind::Dummy)
         fail(fmt::format("fluid or buffer particle {} in the boundary block", i));
       const std::int32_t g = P.group[i];
-      if (g < 0 || static_cast<std::size_t>(g) >= n_groups) fail(fmt::format("group index of particle {}", i));
+      if (g < 0 || static_cast<std::size_t>(g) >= n_groups)
+        fail(fmt::format("group index of particle {}", i));
       const RigidGroup& G = c.groups[static_cast<std::size_t>(g)];
-      if (i < G.first || i >= G.first + G.count) fail(fmt::format("particle {} outside the range of its group", i));
+      if (i < G.first || i >= G.first + G.count)
+        fail(fmt::format("particle {} outside the range of its group", i));
       const std::int32_t s = P.source[i];
       if (P.kind[i] == Kind::Dummy) {
-        if (s < 0 || static_cast<std::size_t>(s) >= nb || P.kind[static_cast<std::size_t>(s)] != Kind::Boundary ||
+        if (s < 0 || static_cast<std::size_t>(s) >= nb ||
+            P.kind[static_cast<std::size_t>(s)] != Kind::Boundary ||
             P.group[static_cast<std::size_t>(s)] != g)
           fail(fmt::format("source of dummy particle {}", i));
       } else if (s != -1) {
@@ -143,7 +157,8 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
   if (std::adjacent_find(ids.begin(), ids.end()) != ids.end()) fail("two particles with one id");
   for (const OpenFlux& f : c.open_flux)
     if (!std::isfinite(f.mass) || f.mass < 0 || !std::isfinite(f.backflow_mass) || f.backflow_mass < 0 ||
-        f.created < 0 || f.deleted < 0)
+        f.created < 0 || f.deleted < 0 || f.bodies_removed < 0 || !std::isfinite(f.body_fill_mass) ||
+        f.body_fill_mass < 0)
       fail("open-boundary flux");
 
   for (const OutputMark& m : c.marks)
@@ -160,10 +175,11 @@ void check_values(const Checkpoint& c, const std::function<void(const std::strin
   const std::size_t n = P.size(), nb = P.n_boundary;
   for (std::size_t k = 0; k < c.groups.size(); ++k) {
     const RigidGroup& g = c.groups[k];
-    for (Vec2 v : {g.pos, g.vel, g.acc, g.pos0, g.force_pressure, g.force_viscous, g.force_collision, g.vel_n})
+    for (Vec2 v :
+         {g.pos, g.vel, g.acc, g.pos0, g.force_pressure, g.force_viscous, g.force_collision, g.vel_n})
       if (!finite(v)) fail(fmt::format("non-finite vector of rigid group {}", k));
-    for (real v : {g.angle, g.omega, g.alpha, g.angle0, g.mass, g.inertia, g.area, g.torque, g.torque_collision,
-                   g.contact_speed, g.omega_n})
+    for (real v : {g.angle, g.omega, g.alpha, g.angle0, g.mass, g.inertia, g.area, g.torque,
+                   g.torque_collision, g.contact_speed, g.omega_n, g.removed_time})
       if (!finite(v)) fail(fmt::format("non-finite value of rigid group {}", k));
     if (g.mass < 0 || g.inertia < 0 || g.area < 0 || g.contact_speed < 0)
       fail(fmt::format("negative mass property of rigid group {}", k));
@@ -171,12 +187,14 @@ void check_values(const Checkpoint& c, const std::function<void(const std::strin
       fail(fmt::format("free body without mass (rigid group {})", k));
   }
   for (std::size_t i = 0; i < n; ++i) {
-    if (i < nb && (!finite(P.local[i]) || !finite(P.normal_local[i]) || !finite(P.normal[i]) || !finite(P.acc[i]) ||
-                   !std::isfinite(P.ds[i]) || P.ds[i] < 0))
+    if (i < nb && (!finite(P.local[i]) || !finite(P.normal_local[i]) || !finite(P.normal[i]) ||
+                   !finite(P.acc[i]) || !std::isfinite(P.ds[i]) || P.ds[i] < 0))
       fail(fmt::format("boundary data of particle {}", i));
-    if (!finite(P.x[i]) || !finite(P.v[i]) || !std::isfinite(P.p[i])) fail(fmt::format("non-finite state of particle {}", i));
+    if (!finite(P.x[i]) || !finite(P.v[i]) || !std::isfinite(P.p[i]))
+      fail(fmt::format("non-finite state of particle {}", i));
     if (!(P.rho[i] > 0) || !std::isfinite(P.rho[i])) fail(fmt::format("density of particle {}", i));
-    if (!(P.m[i] >= 0) || !std::isfinite(P.m[i]) || (i >= nb && P.m[i] == 0)) fail(fmt::format("mass of particle {}", i));
+    if (!(P.m[i] >= 0) || !std::isfinite(P.m[i]) || (i >= nb && P.m[i] == 0))
+      fail(fmt::format("mass of particle {}", i));
   }
 }
 
@@ -208,7 +226,8 @@ void check_checkpoint_fits_case(const Checkpoint& k, const Case& c, const std::f
     if (g < nw) {
       const WallSpec& w = c.walls[g];
       const Motion motion = norm(w.velocity) > 0 || w.omega != 0 ? Motion::Prescribed : Motion::Fixed;
-      if (!G.is_wall || G.name != w.name || G.motion != motion) fail(fmt::format("rigid group {} is not wall '{}'", g, w.name));
+      if (!G.is_wall || G.name != w.name || G.motion != motion)
+        fail(fmt::format("rigid group {} is not wall '{}'", g, w.name));
     } else {
       const BodySpec& b = c.bodies[g - nw];
       const Motion motion = b.motion == BodyMotion::Free    ? Motion::Free
@@ -216,6 +235,12 @@ void check_checkpoint_fits_case(const Checkpoint& k, const Case& c, const std::f
                                                             : Motion::Prescribed;
       if (G.is_wall || G.name != b.name || G.motion != motion || G.body != static_cast<int>(g - nw))
         fail(fmt::format("rigid group {} is not body '{}'", g, b.name));
+      // removed only at an outlet of the case that removes bodies (inlets come first)
+      const auto z = static_cast<std::size_t>(G.removed_at);
+      if (G.removed && (z < c.inlets.size() || z >= c.inlets.size() + c.outlets.size() ||
+                        c.outlets[z - c.inlets.size()].bodies != OutletBodies::Removed))
+        fail(fmt::format("body '{}' removed at open boundary {}, which does not remove bodies", b.name,
+                         G.removed_at));
     }
   }
   check_values(k, fail);
@@ -239,7 +264,8 @@ void check_checkpoint_fits_case(const Checkpoint& k, const Case& c, const std::f
            x.y >= c.domain_min.y - margin * L.y && x.y <= c.domain_max.y + margin * L.y;
   };
   for (std::size_t i = 0; i < P.size(); ++i)
-    if (!inside(P.x[i], i < P.n_boundary ? 1e5 : 1.0)) fail(fmt::format("particle {} far outside the domain", i));
+    if (!inside(P.x[i], i < P.n_boundary ? 1e5 : 1.0))
+      fail(fmt::format("particle {} far outside the domain", i));
   for (std::size_t g = 0; g < k.groups.size(); ++g)
     if (!inside(k.groups[g].pos, 1e5) || !inside(k.groups[g].pos0, 1e5))
       fail(fmt::format("rigid group {} far outside the domain", g));
@@ -250,8 +276,8 @@ std::filesystem::path checkpoint_path(const std::filesystem::path& run_dir) {
 }
 
 std::string encode_checkpoint(const Checkpoint& c) {
-  return encode_checkpoint(
-      CheckpointView{c.case_toml, c.case_hash, c.time, c.step, c.counters, c.marks, c.particles, c.groups, c.open_flux});
+  return encode_checkpoint(CheckpointView{c.case_toml, c.case_hash, c.time, c.step, c.counters, c.marks,
+                                          c.particles, c.groups, c.open_flux});
 }
 
 std::string encode_checkpoint(const CheckpointView& c) {
@@ -287,19 +313,23 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::filesystem::path
     fail(fmt::format("truncated ({} bytes)", bytes.size()));
   if (bytes.size() < magic.size() || bytes.substr(0, magic.size()) != magic)
     fail("not a particula checkpoint (wrong magic number)");
-  if (bytes.size() < kHeaderBytes) fail(fmt::format("truncated ({} bytes, the header alone has {})", bytes.size(), kHeaderBytes));
+  if (bytes.size() < kHeaderBytes)
+    fail(fmt::format("truncated ({} bytes, the header alone has {})", bytes.size(), kHeaderBytes));
   const auto version = load<std::uint32_t>(bytes, 8);
   if (version != kCheckpointVersion)
-    fail(fmt::format("format version {}, but this particula reads version {} (resume it with the particula "
-                     "that wrote it)",
-                     version, kCheckpointVersion));
+    fail(
+        fmt::format("format version {}, but this particula reads version {} (resume it with the particula "
+                    "that wrote it)",
+                    version, kCheckpointVersion));
   if (load<std::uint32_t>(bytes, 12) != kByteOrderMark) fail("written on a machine with another byte order");
   const auto payload_size = load<std::uint64_t>(bytes, 16);
   const std::size_t available = bytes.size() - kHeaderBytes;
   if (available < kTrailerBytes || payload_size > available - kTrailerBytes)
-    fail(fmt::format("truncated ({} bytes; the header announces a payload of {} bytes)", bytes.size(), payload_size));
+    fail(fmt::format("truncated ({} bytes; the header announces a payload of {} bytes)", bytes.size(),
+                     payload_size));
   if (payload_size != available - kTrailerBytes)
-    fail(fmt::format("corrupted ({} bytes after the end of the data)", available - kTrailerBytes - payload_size));
+    fail(fmt::format("corrupted ({} bytes after the end of the data)",
+                     available - kTrailerBytes - payload_size));
   const std::string_view payload = bytes.substr(kHeaderBytes, payload_size);
   if (load<std::uint64_t>(bytes, kHeaderBytes + payload_size) != io::fnv1a64(payload))
     fail("checksum mismatch (the file is corrupted)");
@@ -322,14 +352,15 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::filesystem::path
 }
 
 void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c) {
-  write_checkpoint(file,
-                   CheckpointView{c.case_toml, c.case_hash, c.time, c.step, c.counters, c.marks, c.particles, c.groups, c.open_flux});
+  write_checkpoint(file, CheckpointView{c.case_toml, c.case_hash, c.time, c.step, c.counters, c.marks,
+                                        c.particles, c.groups, c.open_flux});
 }
 
 void write_checkpoint(const std::filesystem::path& file, const CheckpointView& c) {
   std::error_code ec;
   std::filesystem::create_directories(file.parent_path(), ec);
-  if (ec) throw io::WriteError(fmt::format("cannot create '{}': {}", file.parent_path().string(), ec.message()));
+  if (ec)
+    throw io::WriteError(fmt::format("cannot create '{}': {}", file.parent_path().string(), ec.message()));
   io::write_file_atomic(file, encode_checkpoint(c));
 }
 

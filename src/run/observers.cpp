@@ -1,8 +1,9 @@
 #include "particula/run/observers.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "particula/solver/interpolation.hpp"
 #include "particula/validation/analytic.hpp"
@@ -15,10 +16,12 @@ SnapshotWriter::SnapshotWriter(std::filesystem::path run_dir, io::StopCheck stop
     : dir_(std::move(run_dir)), stop_(std::move(stop)) {
   std::error_code ec;
   std::filesystem::create_directories(dir_ / "particles", ec);
-  if (ec) throw io::WriteError(fmt::format("cannot create '{}': {}", (dir_ / "particles").string(), ec.message()));
+  if (ec)
+    throw io::WriteError(fmt::format("cannot create '{}': {}", (dir_ / "particles").string(), ec.message()));
 }
 
-std::vector<std::int32_t> particle_case_index(const Particles& P, const std::vector<RigidGroup>& groups, bool walls) {
+std::vector<std::int32_t> particle_case_index(const Particles& P, const std::vector<RigidGroup>& groups,
+                                              bool walls) {
   std::vector<std::int32_t> of_group(groups.size(), -1);
   std::int32_t wall = 0;  // groups are walls first, then bodies, each in case order (scene.cpp)
   for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -45,8 +48,8 @@ void SnapshotWriter::write(const Solver& s) {
     id.data[i] = static_cast<std::int32_t>(P.id[i]);
   }
   const std::string name = fmt::format("particles/step_{:08d}.vtp", s.step_count());
-  io::write_vtp(dir_ / name, P.x, {pressure, io::vector_array("velocity", P.v), density}, {kind, body, wall, id},
-                stop_);
+  io::write_vtp(dir_ / name, P.x, {pressure, io::vector_array("velocity", P.v), density},
+                {kind, body, wall, id}, stop_);
   pvd_.add(s.time(), name);
   pvd_.write(dir_ / "particles.pvd");
 }
@@ -75,10 +78,13 @@ std::optional<Vec2> exact_velocity(const Case& c, Vec2 x, double t) {
   channel_geometry(c, L, V0);
   const double y = x.y - c.domain_min.y;
   switch (c.exact) {
-    case ExactSolution::Couette: return Vec2{analytic::couette_startup(y, t, L, V0, c.nu), 0};
-    case ExactSolution::Poiseuille: return Vec2{analytic::poiseuille_startup(y, t, L, c.body_force.x, c.nu), 0};
+    case ExactSolution::Couette:
+      return Vec2{analytic::couette_startup(y, t, L, V0, c.nu), 0};
+    case ExactSolution::Poiseuille:
+      return Vec2{analytic::poiseuille_startup(y, t, L, c.body_force.x, c.nu), 0};
     case ExactSolution::SpinUp:
-    case ExactSolution::None: break;
+    case ExactSolution::None:
+      break;
   }
   return std::nullopt;
 }
@@ -132,9 +138,13 @@ const std::vector<std::string> kFlowUnits{"s", "m^2/s"};
 
 ProbeWriter::ProbeWriter(const std::filesystem::path& run_dir, const ProbeSpec& spec, const Case& c,
                          io::StopCheck stop)
-    : spec_(spec), case_(c), points_(probe_points(spec)),
-      csv_(run_dir / ("probe_" + spec.name + ".csv"), probe_columns(c), probe_units(c)), stop_(std::move(stop)) {
-  if (spec.kind == ProbeKind::Line) flow_.emplace(run_dir / ("flow_" + spec.name + ".csv"), kFlowColumns, kFlowUnits);
+    : spec_(spec),
+      case_(c),
+      points_(probe_points(spec)),
+      csv_(run_dir / ("probe_" + spec.name + ".csv"), probe_columns(c), probe_units(c)),
+      stop_(std::move(stop)) {
+  if (spec.kind == ProbeKind::Line)
+    flow_.emplace(run_dir / ("flow_" + spec.name + ".csv"), kFlowColumns, kFlowUnits);
 }
 
 double flow_rate_of(Vec2 from, Vec2 to, const std::vector<Vec2>& v) {
@@ -181,7 +191,8 @@ std::optional<Failure> ProbeWriter::write(const Solver& s) {
   for (std::size_t k0 = 0; k0 < np; k0 += kChunk) {
     poll();
     const std::size_t k1 = std::min(np, k0 + kChunk);
-    chunk.assign(points_.begin() + static_cast<std::ptrdiff_t>(k0), points_.begin() + static_cast<std::ptrdiff_t>(k1));
+    chunk.assign(points_.begin() + static_cast<std::ptrdiff_t>(k0),
+                 points_.begin() + static_cast<std::ptrdiff_t>(k1));
     const auto samples = interpolate_at(s.particles(), s.domain(), s.kernel(), chunk);
     for (std::size_t k = k0; k < k1; ++k) {
       const PointSample& a = samples[k - k0];
@@ -194,13 +205,15 @@ std::optional<Failure> ProbeWriter::write(const Solver& s) {
         err2 += exact_error2(case_, a.v, ex);
       }
       const std::vector<double> row(values.end() - static_cast<std::ptrdiff_t>(nc), values.end());
-      if (auto f = non_finite(row, names, fmt::format("probe '{}' (point {})", spec_.name, k), points_[k])) return f;
+      if (auto f = non_finite(row, names, fmt::format("probe '{}' (point {})", spec_.name, k), points_[k]))
+        return f;
     }
   }
   std::vector<double> flow_row;
   if (flow_) {
     flow_row = {s.time(), flow_rate_of(spec_.from, spec_.to, velocities)};
-    if (auto f = non_finite(flow_row, kFlowColumns, fmt::format("flow_{}.csv", spec_.name), spec_.from)) return f;
+    if (auto f = non_finite(flow_row, kFlowColumns, fmt::format("flow_{}.csv", spec_.name), spec_.from))
+      return f;
   }
   csv_.rows(values, stop_);
   if (flow_) flow_->row(flow_row);
@@ -211,11 +224,12 @@ std::optional<Failure> ProbeWriter::write(const Solver& s) {
 // ---- body history ---------------------------------------------------------------------------
 
 namespace {
-const std::vector<std::string> kBodyColumns{"time", "body", "x",   "y",   "angle", "vx",  "vy",  "omega", "fx",
-                                            "fy",   "torque", "fpx", "fpy", "fvx",   "fvy", "fcx", "fcy"};
+const std::vector<std::string> kBodyColumns{"time", "body",  "x",   "y",   "angle",  "vx",
+                                            "vy",   "omega", "fx",  "fy",  "torque", "fpx",
+                                            "fpy",  "fvx",   "fvy", "fcx", "fcy"};
 const std::vector<std::string> kWallColumns{"time", "wall", "fx", "fy", "fpx", "fpy", "fvx", "fvy", "torque"};
 // Units of the columns above. In 2D a force is per unit depth (N/m) and a torque N m/m.
-const std::vector<std::string> kBodyUnits{"s",   "-",   "m",   "m",   "rad", "m/s", "m/s", "rad/s", "N/m",
+const std::vector<std::string> kBodyUnits{"s",   "-",     "m",   "m",   "rad", "m/s", "m/s", "rad/s", "N/m",
                                           "N/m", "N m/m", "N/m", "N/m", "N/m", "N/m", "N/m", "N/m"};
 const std::vector<std::string> kWallUnits{"s", "-", "N/m", "N/m", "N/m", "N/m", "N/m", "N/m", "N m/m"};
 }  // namespace
@@ -244,7 +258,8 @@ bool BodyHistoryWriter::writes_coefficients(const Case& c) {
 }
 
 BodyHistoryWriter::BodyHistoryWriter(const std::filesystem::path& run_dir)
-    : csv_(run_dir / "bodies.csv", kBodyColumns, kBodyUnits), walls_(run_dir / "walls.csv", kWallColumns, kWallUnits) {}
+    : csv_(run_dir / "bodies.csv", kBodyColumns, kBodyUnits),
+      walls_(run_dir / "walls.csv", kWallColumns, kWallUnits) {}
 
 BodyHistoryWriter::BodyHistoryWriter(const std::filesystem::path& run_dir, const Case& c)
     : BodyHistoryWriter(run_dir) {
@@ -262,6 +277,7 @@ std::optional<Failure> BodyHistoryWriter::write(const Solver& s) {
   std::vector<std::vector<double>> bodies, walls, coefficients;
   int wall = 0;
   for (const RigidGroup& g : s.groups()) {
+    if (g.removed) continue;  // taken out at an outlet: its rows end at its removal
     const Vec2 f = g.force_pressure + g.force_viscous;
     const bool is_wall = g.is_wall;
     auto& rows = is_wall ? walls : bodies;
@@ -269,11 +285,11 @@ std::optional<Failure> BodyHistoryWriter::write(const Solver& s) {
       rows.push_back({s.time(), static_cast<double>(wall++), f.x, f.y, g.force_pressure.x, g.force_pressure.y,
                       g.force_viscous.x, g.force_viscous.y, g.torque});
     else
-      rows.push_back({s.time(), static_cast<double>(g.body), g.pos.x, g.pos.y, g.angle, g.vel.x, g.vel.y, g.omega, f.x,
-                      f.y, g.torque, g.force_pressure.x, g.force_pressure.y, g.force_viscous.x, g.force_viscous.y,
-                      g.force_collision.x, g.force_collision.y});
-    const std::string where = fmt::format("{} of {} '{}'", is_wall ? "walls.csv" : "bodies.csv",
-                                          is_wall ? "wall" : "body", g.name);
+      rows.push_back({s.time(), static_cast<double>(g.body), g.pos.x, g.pos.y, g.angle, g.vel.x, g.vel.y,
+                      g.omega, f.x, f.y, g.torque, g.force_pressure.x, g.force_pressure.y, g.force_viscous.x,
+                      g.force_viscous.y, g.force_collision.x, g.force_collision.y});
+    const std::string where =
+        fmt::format("{} of {} '{}'", is_wall ? "walls.csv" : "bodies.csv", is_wall ? "wall" : "body", g.name);
     if (auto bad = non_finite(rows.back(), is_wall ? kWallColumns : kBodyColumns, where, g.pos)) return bad;
     const auto b = static_cast<std::size_t>(g.body);
     if (is_wall || !coefficients_ || b >= references_.size() || !references_[b]) continue;
@@ -296,9 +312,10 @@ namespace particula {
 // ---- open boundaries --------------------------------------------------------------------------
 
 namespace {
-const std::vector<std::string> kOpenColumns{"time",    "boundary", "mass",          "backflow_mass",
-                                            "created", "deleted",  "buffer_particles", "fluid_mass"};
-const std::vector<std::string> kOpenUnits{"s", "-", "kg/m", "kg/m", "-", "-", "-", "kg/m"};
+const std::vector<std::string> kOpenColumns{
+    "time",    "boundary",         "mass",       "backflow_mass", "created",
+    "deleted", "buffer_particles", "fluid_mass", "body_fill_mass"};
+const std::vector<std::string> kOpenUnits{"s", "-", "kg/m", "kg/m", "-", "-", "-", "kg/m", "kg/m"};
 }  // namespace
 
 real fluid_mass(const Particles& P) {
@@ -333,6 +350,11 @@ std::vector<io::JsonObject> open_boundary_summary(const Solver& s) {
     o.set("kind", std::string(s.params().open[z].inlet ? "inlet" : "outlet"));
     o.set("mass", f.mass).set("backflow_mass", f.backflow_mass);
     o.set("created", f.created).set("deleted", f.deleted).set("buffer_particles", buffers[z]);
+    if (!s.params().open[z].inlet)
+      o.set("bodies",
+            std::string(s.params().open_specs[z].bodies == OutletBodies::Removed ? "removed" : "held"))
+          .set("bodies_removed", f.bodies_removed)
+          .set("body_fill_mass", f.body_fill_mass);
     open.push_back(std::move(o));
   }
   return open;
@@ -345,9 +367,13 @@ std::string open_boundary_log_line(const Solver& s) {
     crossed += fmt::format("{}{} '{}' {:.6g} kg/m ({:.6g} kg/m the other way; {} created, {} deleted)",
                            z == 0 ? "" : ", ", s.params().open[z].inlet ? "in through" : "out through",
                            s.params().open_specs[z].name, f.mass, f.backflow_mass, f.created, f.deleted);
+    if (f.bodies_removed > 0)
+      crossed += fmt::format(" and {} bodies removed ({:.6g} kg/m of fluid in their places)",
+                             f.bodies_removed, f.body_fill_mass);
   }
-  return fmt::format("open boundaries: {}; fluid mass {:.6g} kg/m; mirrored fits that fell back to the Shepard mean {}",
-                     crossed, fluid_mass(s.particles()), s.counters().open_fit_fallback);
+  return fmt::format(
+      "open boundaries: {}; fluid mass {:.6g} kg/m; mirrored fits that fell back to the Shepard mean {}",
+      crossed, fluid_mass(s.particles()), s.counters().open_fit_fallback);
 }
 
 OpenBoundaryWriter::OpenBoundaryWriter(const std::filesystem::path& run_dir)
@@ -361,9 +387,10 @@ std::optional<Failure> OpenBoundaryWriter::write(const Solver& s) {
   for (std::size_t z = 0; z < flux.size(); ++z) {
     rows.push_back({s.time(), static_cast<double>(z), flux[z].mass, flux[z].backflow_mass,
                     static_cast<double>(flux[z].created), static_cast<double>(flux[z].deleted),
-                    static_cast<double>(buffers[z]), mass});
-    if (auto bad = non_finite(rows.back(), kOpenColumns,
-                              fmt::format("open_boundaries.csv of '{}'", s.params().open_specs[z].name), Vec2{}))
+                    static_cast<double>(buffers[z]), mass, flux[z].body_fill_mass});
+    if (auto bad =
+            non_finite(rows.back(), kOpenColumns,
+                       fmt::format("open_boundaries.csv of '{}'", s.params().open_specs[z].name), Vec2{}))
       return bad;
   }
   for (const auto& row : rows) csv_.row(row);

@@ -206,7 +206,11 @@ double wall_gap(const Case& c, std::size_t a, Vec2 pa, double aa, std::size_t w)
 std::vector<ValidationCheck> check_no_overlap(const fs::path& run_dir, const Case& c, double max_overlap) {
   const std::vector<BodyTrack> tracks = tracks_or_throw(run_dir, c);
   const BodyGeometry g(c);
-  const std::size_t rows = common_rows(tracks), n = c.bodies.size();
+  // A body removed at an outlet has fewer rows (its track ends at its removal): each row k is
+  // checked among the bodies that have it (the rows of one time share their index).
+  std::size_t rows = 0;
+  for (const BodyTrack& t : tracks) rows = std::max(rows, t.size());
+  const std::size_t n = c.bodies.size();
   double worst = kInf, t_worst = 0;
   std::string where = "-";
   auto note = [&](double gap, double t, const std::string& what) {
@@ -215,6 +219,7 @@ std::vector<ValidationCheck> check_no_overlap(const fs::path& run_dir, const Cas
   for (std::size_t k = 0; k < rows; ++k) {
     for (std::size_t a = 0; a < n; ++a) {
       const BodyTrack& A = tracks[a];
+      if (A.size() <= k) continue;
       const Vec2 pa{A.x[k], A.y[k]};
       if (moving(c.bodies[a]))
         for (std::size_t w = 0; w < c.walls.size(); ++w)
@@ -223,6 +228,7 @@ std::vector<ValidationCheck> check_no_overlap(const fs::path& run_dir, const Cas
       for (std::size_t b = a + 1; b < n; ++b) {
         if (!moving(c.bodies[a]) && !moving(c.bodies[b])) continue;
         const BodyTrack& B = tracks[b];
+        if (B.size() <= k) continue;
         note(gap_between(c, g, a, pa, A.angle[k], b, {B.x[k], B.y[k]}, B.angle[k]), A.t[k],
              fmt::format("bodies '{}' and '{}'", c.bodies[a].name, c.bodies[b].name));
       }
@@ -258,7 +264,8 @@ Escapes count_escapes(const io::VtpData& vtp, const Case& c, const BodyGeometry&
     const bool out_y = !c.periodic_y && (x.y < c.domain_min.y - tol || x.y > c.domain_max.y + tol);
     if (out_x || out_y || !in_fluid_region(walls, dom, x)) ++e.outside;
     for (std::size_t b = 0; b < c.bodies.size(); ++b) {
-      if (tracks[b].size() == 0) continue;
+      // no row at this time: the body was removed at an outlet before it (fluid fills its place)
+      if (tracks[b].size() == 0 || tracks[b].t.back() < t - 1e-9 * std::max(1.0, std::fabs(t))) continue;
       const std::size_t k = row_at(tracks[b], t);
       const Vec2 pos{tracks[b].x[k], tracks[b].y[k]};
       if (norm(separation(c, x, pos)) > g.shapes[b].bounding_radius()) continue;

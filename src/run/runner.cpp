@@ -1,5 +1,6 @@
 #include "particula/run/runner.hpp"
 
+#include <fmt/format.h>
 #include <omp.h>
 
 #include <algorithm>
@@ -9,7 +10,6 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <fmt/format.h>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -159,7 +159,8 @@ void add_legend(io::JsonObject& summary, const Case& c) {
     b.set("shape", choice_text(c, "body[].shape", k)).set("motion", choice_text(c, "body[].motion", k));
     bodies.push_back(std::move(b));
   }
-  for (std::size_t k = 0; k < c.walls.size(); ++k) walls.push_back(io::JsonObject().set("index", k).set("name", c.walls[k].name));
+  for (std::size_t k = 0; k < c.walls.size(); ++k)
+    walls.push_back(io::JsonObject().set("index", k).set("name", c.walls[k].name));
   summary.set("bodies", bodies);
   summary.set("walls", walls);
 }
@@ -199,6 +200,16 @@ io::JsonObject run_summary(const Session& s, const RunEnd& end, std::optional<do
   summary.set("guard_events", guards);
   if (!solver.open_flux().empty()) {
     summary.set("open_boundaries", open_boundary_summary(solver));
+    std::vector<io::JsonObject> removed;
+    for (const RigidGroup& g : solver.groups())
+      if (g.removed)
+        removed.push_back(
+            io::JsonObject()
+                .set("index", static_cast<std::int64_t>(g.body))
+                .set("name", g.name)
+                .set("time", g.removed_time)
+                .set("outlet", solver.params().open_specs[static_cast<std::size_t>(g.removed_at)].name));
+    summary.set("bodies_removed", removed);
     summary.set("fluid_mass", fluid_mass(solver.particles()));
   }
   for (const auto& p : s.outputs->probes())
@@ -213,9 +224,8 @@ void save_checkpoint(const fs::path& file, const Session& s) {
   const real t = solver.time();
   const std::int64_t step = solver.step_count();
   const std::vector<OutputMark> marks = s.outputs->marks();
-  write_checkpoint(file,
-                   CheckpointView{toml, s.case_hash, t, step, solver.counters(), marks, solver.particles(), solver.groups(),
-                                  solver.open_flux()});
+  write_checkpoint(file, CheckpointView{toml, s.case_hash, t, step, solver.counters(), marks,
+                                        solver.particles(), solver.groups(), solver.open_flux()});
 }
 
 /// The run has written its initial state: when it replaces an old run directory, a checkpoint
@@ -258,7 +268,8 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
   std::optional<Failure> failure = write_outputs(!s.resumed);
   mark_started(s, rep);
   const real ci = c.checkpoint_interval;
-  real next_checkpoint = ci > 0 ? run_detail::next_multiple(solver.time(), ci) : std::numeric_limits<real>::infinity();
+  real next_checkpoint =
+      ci > 0 ? run_detail::next_multiple(solver.time(), ci) : std::numeric_limits<real>::infinity();
   std::string status = "completed";
   int exit_code = 0;
   const real eps = 1e-9 * c.t_end;
@@ -274,7 +285,15 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
     }
     const real target = out.next_event(c.t_end);
     failure = solver.step_to(target);
-    stats.add_step(solver.last_dt(), solver.time() == target, solver.particle_count(), solver.last_pair_count());
+    if (!failure)
+      for (const Solver::BodyRemoval& r : solver.removed_in_last_step())
+        rep.say(fmt::format(
+            "t = {:.9g} s, step {}: body '{}' reached the screen of outlet '{}' and was removed; {} "
+            "fluid particles ({:.6g} kg/m) fill its place",
+            solver.time(), solver.step_count(), solver.groups()[r.group].name,
+            solver.params().open_specs[r.zone].name, r.fill_particles, r.fill_mass));
+    stats.add_step(solver.last_dt(), solver.time() == target, solver.particle_count(),
+                   solver.last_pair_count());
     if (!failure) failure = write_outputs(false);
     if (failure) break;
     if (cancelled) continue;  // interrupted: the checkpoint is written below
@@ -296,7 +315,8 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
     const std::string msg = fmt::format(
         "numerical failure at t = {:.9g} s, step {}: {} at ({:.6g}, {:.6g}); last snapshot and a diagnostic "
         "checkpoint ({}) written",
-        solver.time(), solver.step_count(), failure->what, failure->position.x, failure->position.y, diag.string());
+        solver.time(), solver.step_count(), failure->what, failure->position.x, failure->position.y,
+        diag.string());
     rep.log.record("error: " + msg);
     std::fprintf(stderr, "error: %s\n", msg.c_str());
     status = "failed";
@@ -305,33 +325,37 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
     save_checkpoint(checkpoint_file, s);  // the restartable checkpoint
   }
   if (exit_code == 130)
-    rep.tell(fmt::format("interrupted at t = {:.9g} s: checkpoint written; continue with: particula resume {}",
-                         solver.time(), s.dir.string()));
+    rep.tell(
+        fmt::format("interrupted at t = {:.9g} s: checkpoint written; continue with: particula resume {}",
+                    solver.time(), s.dir.string()));
   const double wall = stats.wall_seconds();
   const auto& cnt = solver.counters();
   const auto particle_error = particle_profile_error(solver, c, stop_requested);
   io::write_file_atomic(s.dir / "summary.json",
                         run_summary(s, RunEnd{status, exit_code, failure, {}}, particle_error).dump());
 
-  rep.say(fmt::format("{}: t = {:.6g} s after {} steps in {:.2f} s ({:.3g} particle-steps/s on {} threads)", status,
-                      solver.time(), solver.step_count(), wall, wall > 0 ? stats.particle_steps / wall : 0.0,
-                      omp_get_max_threads()));
-  rep.say(fmt::format("guard events: singular B {}, singular Bhat at fluid particles {}, wall pressure kept {}, "
-                      "extrapolated where ill-conditioned (corners, contact wedges) {}, extrapolated in narrow "
-                      "gaps {}, normal fallback {}, surface guard {} (closing gaps {}), isolated particles left "
-                      "out of P.20 {}",
-                      cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.wall_pressure_extrapolated,
-                      cnt.wall_pressure_extrapolated_far, cnt.normal_fallback, cnt.surface_pushed, cnt.gap_squeezed,
-                      cnt.isolated_left_out));
+  rep.say(fmt::format("{}: t = {:.6g} s after {} steps in {:.2f} s ({:.3g} particle-steps/s on {} threads)",
+                      status, solver.time(), solver.step_count(), wall,
+                      wall > 0 ? stats.particle_steps / wall : 0.0, omp_get_max_threads()));
+  rep.say(
+      fmt::format("guard events: singular B {}, singular Bhat at fluid particles {}, wall pressure kept {}, "
+                  "extrapolated where ill-conditioned (corners, contact wedges) {}, extrapolated in narrow "
+                  "gaps {}, normal fallback {}, surface guard {} (closing gaps {}), isolated particles left "
+                  "out of P.20 {}",
+                  cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.wall_pressure_extrapolated,
+                  cnt.wall_pressure_extrapolated_far, cnt.normal_fallback, cnt.surface_pushed,
+                  cnt.gap_squeezed, cnt.isolated_left_out));
   if (!solver.open_flux().empty()) rep.say(open_boundary_log_line(solver));
   const char* compared = c.exact == ExactSolution::SpinUp ? "velocity" : "vx";
   if (particle_error)
-    rep.say(fmt::format("L2 error of the fluid particles' {} against the exact solution: {:.4f} % of the peak speed",
-                        compared, 100 * *particle_error));
+    rep.say(fmt::format(
+        "L2 error of the fluid particles' {} against the exact solution: {:.4f} % of the peak speed",
+        compared, 100 * *particle_error));
   for (const auto& p : out.probes())
     if (auto e = p->last_error())
-      rep.say(fmt::format("probe '{}' (MLS-interpolated): L2 error of {} {:.4f} % of the peak speed at t = {:.6g} s",
-                          p->spec().name, compared, 100 * *e, solver.time()));
+      rep.say(fmt::format(
+          "probe '{}' (MLS-interpolated): L2 error of {} {:.4f} % of the peak speed at t = {:.6g} s",
+          p->spec().name, compared, 100 * *e, solver.time()));
   // Plots of every run that has data to show: completed, failed (up to the failure: where it went
   // wrong is what one wants to see) and interrupted. An interrupted run has stopped and saved its
   // state, so its stop request is cleared: a second Ctrl-C stops the plotting.
@@ -340,18 +364,25 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
     switch (draw_plots(s.dir, s.dir / "log.txt", stop_requested)) {
       case PlotOutcome::Drawn:
         if (!rep.quiet || exit_code != 0)
-          rep.say(fmt::format("plots{} in {}", exit_code == 3 ? " up to the failure" : exit_code == 130 ? " up to the interruption" : "",
+          rep.say(fmt::format("plots{} in {}",
+                              exit_code == 3     ? " up to the failure"
+                              : exit_code == 130 ? " up to the interruption"
+                                                 : "",
                               (s.dir / "plots").string()));
         break;
       case PlotOutcome::NoMatplotlib:
       case PlotOutcome::NoScript:
-        rep.say("note: no plots drawn (python3-matplotlib is not installed; scripts/install-deps installs it)");
+        rep.say(
+            "note: no plots drawn (python3-matplotlib is not installed; scripts/install-deps installs it)");
         break;
-      case PlotOutcome::Failed: rep.say("warning: plotting failed (see log.txt); the data files are complete"); break;
+      case PlotOutcome::Failed:
+        rep.say("warning: plotting failed (see log.txt); the data files are complete");
+        break;
       case PlotOutcome::Interrupted:
-        rep.tell(fmt::format("interrupted while drawing the plots: the data files are complete; draw them with: "
-                             "particula plot {}",
-                             s.dir.string()));
+        rep.tell(
+            fmt::format("interrupted while drawing the plots: the data files are complete; draw them with: "
+                        "particula plot {}",
+                        s.dir.string()));
         exit_code = 130;
         break;
     }
@@ -394,16 +425,18 @@ int io_failure(const io::WriteError& e, Session& s, Reporter* rep) {
   if (rep) rep->log.record("error: " + msg);
   if (s.solver && s.outputs) {  // summary.json says how the run ended, if the disk takes it
     try {
-      io::write_file_atomic(s.dir / "summary.json",
-                            run_summary(s, RunEnd{"io_failure", kExitIoFailure, std::nullopt, msg}, std::nullopt).dump());
+      io::write_file_atomic(
+          s.dir / "summary.json",
+          run_summary(s, RunEnd{"io_failure", kExitIoFailure, std::nullopt, msg}, std::nullopt).dump());
     } catch (const std::exception&) {
     }
   }
   std::error_code ec;
   if (!s.dir.empty() && fs::exists(checkpoint_path(s.dir), ec)) {
-    const std::string hint = fmt::format("the last checkpoint ({}) is kept: once the cause is fixed, continue with: "
-                                         "particula resume {}",
-                                         checkpoint_path(s.dir).string(), s.dir.string());
+    const std::string hint = fmt::format(
+        "the last checkpoint ({}) is kept: once the cause is fixed, continue with: "
+        "particula resume {}",
+        checkpoint_path(s.dir).string(), s.dir.string());
     std::fprintf(stderr, "%s\n", hint.c_str());
     if (rep) rep->log.record(hint);
   }
@@ -460,20 +493,24 @@ int run_command(const fs::path& case_file, const RunOptions& opt) {
     io::write_file_atomic(s.dir / "case.toml", resolved_case_toml(s.c));
     Scene scene = build_scene(s.c);
     s.n_fluid = scene.particles.size() - scene.particles.n_boundary;
-    rep->say(fmt::format("{}: case '{}' from {}, {} particles ({} fluid, {} boundary), {} threads, backend {}",
-                         version_line(), s.c.name, case_file.string(), scene.particles.size(), s.n_fluid, scene.particles.n_boundary,
-                         omp_get_max_threads(), opt.backend));
+    rep->say(
+        fmt::format("{}: case '{}' from {}, {} particles ({} fluid, {} boundary), {} threads, backend {}",
+                    version_line(), s.c.name, case_file.string(), scene.particles.size(), s.n_fluid,
+                    scene.particles.n_boundary, omp_get_max_threads(), opt.backend));
     if (run_dir->replacing())
-      rep->say(fmt::format("replacing the run directory {}: the old run is kept aside in {} until this run has "
-                           "written its initial state and a checkpoint",
-                           s.dir.string(), run_dir->aside().string()));
+      rep->say(
+          fmt::format("replacing the run directory {}: the old run is kept aside in {} until this run has "
+                      "written its initial state and a checkpoint",
+                      s.dir.string(), run_dir->aside().string()));
     scene.params.cuda = opt.backend == "cuda";
-    s.solver = std::make_unique<Solver>(scene.params, scene.domain, std::move(scene.particles), std::move(scene.groups));
+    s.solver = std::make_unique<Solver>(scene.params, scene.domain, std::move(scene.particles),
+                                        std::move(scene.groups));
     s.outputs = std::make_unique<RunOutputs>(s.dir, s.c, stop_requested);
     if (stop_requested())
       return interrupted_before_start(s, *rep,
-                                      run_dir->replacing() ? "nothing written; the previous run directory is restored"
-                                                           : "nothing written");
+                                      run_dir->replacing()
+                                          ? "nothing written; the previous run directory is restored"
+                                          : "nothing written");
     return run_loop(s, *rep, opt.plots);
   } catch (const CaseError& e) {
     return bad_input(e, s);
@@ -494,10 +531,11 @@ bool resume_override_allowed(const std::string& assignment) {
 int resume_command(const ResumeOptions& opt) {
   for (const auto& o : opt.overrides)
     if (!resume_override_allowed(o)) {
-      std::fprintf(stderr,
-                   "error: --set %s: only time.end and output.* keys can be changed when resuming (the checkpoint "
-                   "fixes the rest of the case)\n",
-                   o.c_str());
+      std::fprintf(
+          stderr,
+          "error: --set %s: only time.end and output.* keys can be changed when resuming (the checkpoint "
+          "fixes the rest of the case)\n",
+          o.c_str());
       return 2;
     }
   if (!backend_usable(opt.backend)) return 2;
@@ -515,10 +553,11 @@ int resume_command(const ResumeOptions& opt) {
     return bad_input(e);
   }
   if (!marker || marker->kind != MarkedKind::Run) {
-    std::fprintf(stderr,
-                 "error: '%s' is not a particula run directory (it has no %s marker with a case; run directories are "
-                 "made by 'particula run')\n",
-                 opt.run_dir.string().c_str(), kRunMarker);
+    std::fprintf(
+        stderr,
+        "error: '%s' is not a particula run directory (it has no %s marker with a case; run directories are "
+        "made by 'particula run')\n",
+        opt.run_dir.string().c_str(), kRunMarker);
     return 2;
   }
   if (!fs::exists(file, ec)) {
@@ -532,7 +571,8 @@ int resume_command(const ResumeOptions& opt) {
     k = read_checkpoint(file);
     if (k.case_hash != marker->case_hash)
       throw io::IoError(fmt::format(
-          "checkpoint '{}' was written for another case (case identity {:016x}) than the one run directory '{}' was "
+          "checkpoint '{}' was written for another case (case identity {:016x}) than the one run directory "
+          "'{}' was "
           "created for ({:016x}, in its {} marker): it does not belong to this run; resume refused",
           file.string(), k.case_hash, opt.run_dir.string(), marker->case_hash, kRunMarker));
     s.c = load_case_text(k.case_toml, file, opt.overrides);
@@ -543,7 +583,8 @@ int resume_command(const ResumeOptions& opt) {
     return bad_input(e);
   }
   if (s.c.t_end < k.time * (1 - 1e-12)) {
-    std::fprintf(stderr, "error: key 'time.end': %.9g s is before the checkpoint's time %.9g s\n", s.c.t_end, k.time);
+    std::fprintf(stderr, "error: key 'time.end': %.9g s is before the checkpoint's time %.9g s\n", s.c.t_end,
+                 k.time);
     return 2;
   }
   s.dir = opt.run_dir;
@@ -558,16 +599,20 @@ int resume_command(const ResumeOptions& opt) {
     const auto removed = remove_stale_temp_files(s.dir);
     if (!removed.empty()) {
       std::string names;
-      for (const auto& r : removed) names += (names.empty() ? "" : ", ") + r.lexically_relative(s.dir).string();
-      rep->say(fmt::format("removed {} temporary file(s) left by a particula that was killed while writing: {}",
-                           removed.size(), names));
+      for (const auto& r : removed)
+        names += (names.empty() ? "" : ", ") + r.lexically_relative(s.dir).string();
+      rep->say(
+          fmt::format("removed {} temporary file(s) left by a particula that was killed while writing: {}",
+                      removed.size(), names));
     }
     io::write_file_atomic(s.dir / "case.toml", resolved_case_toml(s.c));
     const Particles& P = k.particles;
     s.n_fluid = P.size() - P.n_boundary;
-    rep->say(fmt::format("{}: resuming case '{}' in {} at t = {:.9g} s, step {} ({} particles), to t = {:.6g} s, "
-                         "{} threads, backend {}",
-                         version_line(), s.c.name, s.dir.string(), k.time, k.step, P.size(), s.c.t_end, omp_get_max_threads(), opt.backend));
+    rep->say(
+        fmt::format("{}: resuming case '{}' in {} at t = {:.9g} s, step {} ({} particles), to t = {:.6g} s, "
+                    "{} threads, backend {}",
+                    version_line(), s.c.name, s.dir.string(), k.time, k.step, P.size(), s.c.t_end,
+                    omp_get_max_threads(), opt.backend));
     const Domain domain{s.c.domain_min, s.c.domain_max, s.c.periodic_x, s.c.periodic_y};
     PhysicsParams prm = physics_params(s.c);
     prm.cuda = opt.backend == "cuda";

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -23,11 +23,17 @@ namespace particula {
 
 Solver::Solver(PhysicsParams params, Domain domain, Particles particles, std::vector<RigidGroup> groups,
                SolverStart start, real t0, std::int64_t step0)
-    : prm_(params), domain_(domain), P_(std::move(particles)), groups_(std::move(groups)), kernel_(params.h),
-      t_(t0), steps_(step0) {
+    : prm_(params),
+      domain_(domain),
+      P_(std::move(particles)),
+      groups_(std::move(groups)),
+      kernel_(params.h),
+      t_(t0),
+      steps_(step0) {
   if (prm_.cuda && !prm_.open.empty())
-    throw std::runtime_error("open boundaries ([[inlet]], [[outlet]]) run on the CPU backend only for now: "
-                             "use --backend cpu");
+    throw std::runtime_error(
+        "open boundaries ([[inlet]], [[outlet]]) run on the CPU backend only for now: "
+        "use --backend cpu");
   real margin = 0;  // the buffers behind open boundaries lie outside the domain
   for (const OpenZone& z : prm_.open) margin = std::max(margin, z.depth);
   grid_.setup(domain_, prm_.h, margin);
@@ -108,7 +114,7 @@ real Solver::stable_dt() const {
   const real dlist = dev_ ? dev_->min_distance() : nl_.min_distance;
   const real dmin = dlist > 0 && std::isfinite(dlist) ? dlist : prm_.d0;
   const real vmax = max_speed();
-  real dt = prm_.cfl * dmin / (prm_.c + vmax);  // P.30: Courant condition
+  real dt = prm_.cfl * dmin / (prm_.c + vmax);                           // P.30: Courant condition
   if (prm_.nu > 0) dt = std::min(dt, prm_.cfl * dmin * dmin / prm_.nu);  // P.31: viscous diffusion
   if (prm_.dt_max > 0) dt = std::min(dt, prm_.dt_max);
   if (contact_dt_ > 0) dt = std::min(dt, contact_dt_);  // t_c / 20 of the contacts (collisions())
@@ -138,15 +144,19 @@ std::optional<Failure> Solver::time_step_collapse(real dt) const {
   const real vmax = max_speed();
   std::string why;
   if (contact_dt_ > 0 && contact_dt_ <= dt)
-    why = "the stability limit of a contact (t_c / 20): a contact too stiff for its bodies' masses (collision.*)";
+    why =
+        "the stability limit of a contact (t_c / 20): a contact too stiff for its bodies' masses "
+        "(collision.*)";
   else if (vmax > prm_.c)
-    why = fmt::format("a particle at {:.3g} m/s, {:.3g} times the sound speed: the flow has blown up", vmax, vmax / prm_.c);
+    why = fmt::format("a particle at {:.3g} m/s, {:.3g} times the sound speed: the flow has blown up", vmax,
+                      vmax / prm_.c);
   else
     why = fmt::format("two particles {:.3g} d0 apart: particles collapsing onto each other", dlist / prm_.d0);
-  return Failure{fmt::format("the time step collapsed to {:.3g} s, below {:g} of the case's {:.3g} s (cfl d0 / c, "
-                             "cfl d0^2 / nu); it is limited by {}",
-                             dt, kTimeStepCollapse, dt_scale, why),
-                 -1, Vec2{}};
+  return Failure{
+      fmt::format("the time step collapsed to {:.3g} s, below {:g} of the case's {:.3g} s (cfl d0 / c, "
+                  "cfl d0^2 / nu); it is limited by {}",
+                  dt, kTimeStepCollapse, dt_scale, why),
+      -1, Vec2{}};
 }
 
 std::optional<Failure> Solver::step(real dt_cap) {
@@ -165,8 +175,10 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   }
   if (prm_.reorder_interval > 0 && steps_ % prm_.reorder_interval == 0) {
     PhaseTimer timer(times_.neighbors);
-    if (dev_) dev_->reorder_fluid();
-    else reorder_fluid();
+    if (dev_)
+      dev_->reorder_fluid();
+    else
+      reorder_fluid();
   }
   if (dev_) {
     PhaseTimer timer(times_.geometry);
@@ -284,6 +296,7 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   PhaseTimer timer(times_.integration);
   guard_surfaces();
   open_transfer();
+  remove_bodies_at_outlets();
   return check_health();
 }
 
@@ -292,14 +305,24 @@ namespace {
 /// hold), as a Failure; nullopt when all are finite.
 std::optional<Failure> unhealthy_group(const std::vector<RigidGroup>& groups) {
   for (const RigidGroup& g : groups) {
-    const real values[] = {g.pos.x, g.pos.y, g.vel.x, g.vel.y, g.angle, g.omega, g.torque,
-                           g.force_pressure.x, g.force_pressure.y, g.force_viscous.x, g.force_viscous.y,
-                           g.force_collision.x, g.force_collision.y};
+    const real values[] = {g.pos.x,
+                           g.pos.y,
+                           g.vel.x,
+                           g.vel.y,
+                           g.angle,
+                           g.omega,
+                           g.torque,
+                           g.force_pressure.x,
+                           g.force_pressure.y,
+                           g.force_viscous.x,
+                           g.force_viscous.y,
+                           g.force_collision.x,
+                           g.force_collision.y};
     if (std::all_of(std::begin(values), std::end(values), [](real v) { return std::isfinite(v); })) continue;
     Failure f;
     f.position = std::isfinite(g.pos.x) && std::isfinite(g.pos.y) ? g.pos : Vec2{};
-    f.what = std::string("non-finite value (NaN or Inf) in the motion or force of ") + (g.is_wall ? "wall '" : "body '") +
-             g.name + "'";
+    f.what = std::string("non-finite value (NaN or Inf) in the motion or force of ") +
+             (g.is_wall ? "wall '" : "body '") + g.name + "'";
     return f;
   }
   return std::nullopt;
@@ -320,7 +343,8 @@ std::optional<Failure> Solver::check_health() const {
     const std::size_t n = P_.size();
 #pragma omp parallel for schedule(static) reduction(min : worst)
     for (std::size_t i = 0; i < n; ++i)
-      if (particle_unhealthy(P_.kind[i] == Kind::Fluid, P_.x[i], P_.v[i], P_.rho[i], P_.p[i], lim)) worst = std::min(worst, P_.id[i]);
+      if (particle_unhealthy(P_.kind[i] == Kind::Fluid, P_.x[i], P_.v[i], P_.rho[i], P_.p[i], lim))
+        worst = std::min(worst, P_.id[i]);
     if (worst == std::numeric_limits<std::int64_t>::max()) return unhealthy_group(groups_);
   }
   std::size_t i = 0;
@@ -330,13 +354,17 @@ std::optional<Failure> Solver::check_health() const {
   f.position = P_.x[i];
   const char* kind = P_.is_fluid(i) ? "fluid" : "boundary";
   char buf[512];
-  if (!(std::isfinite(P_.rho[i]) && std::isfinite(P_.p[i]) && std::isfinite(P_.v[i].x) && std::isfinite(P_.v[i].y)))
-    std::snprintf(buf, sizeof buf, "non-finite value (NaN or Inf) at %s particle %lld", kind, static_cast<long long>(worst));
+  if (!(std::isfinite(P_.rho[i]) && std::isfinite(P_.p[i]) && std::isfinite(P_.v[i].x) &&
+        std::isfinite(P_.v[i].y)))
+    std::snprintf(buf, sizeof buf, "non-finite value (NaN or Inf) at %s particle %lld", kind,
+                  static_cast<long long>(worst));
   else if (P_.rho[i] < lo || P_.rho[i] > hi)
-    std::snprintf(buf, sizeof buf, "density %.6g kg/m^3 of %s particle %lld outside [%.4g, %.4g] (rho0 x [%g, %g])",
-                  P_.rho[i], kind, static_cast<long long>(worst), lo, hi, prm_.rho_min_ratio, prm_.rho_max_ratio);
+    std::snprintf(buf, sizeof buf,
+                  "density %.6g kg/m^3 of %s particle %lld outside [%.4g, %.4g] (rho0 x [%g, %g])", P_.rho[i],
+                  kind, static_cast<long long>(worst), lo, hi, prm_.rho_min_ratio, prm_.rho_max_ratio);
   else
-    std::snprintf(buf, sizeof buf, "%s particle %lld left the closed domain", kind, static_cast<long long>(worst));
+    std::snprintf(buf, sizeof buf, "%s particle %lld left the closed domain", kind,
+                  static_cast<long long>(worst));
   f.what = buf;
   if (P_.is_fluid(i)) f.what += likely_cause(P_.x[i]);
   return f;
@@ -348,12 +376,13 @@ std::string Solver::likely_cause(Vec2 x) const {
     const OpenZone& oz = prm_.open[z];
     const real xi = open_depth(oz, x), s = open_along(oz, x);
     if (!(xi < 3 * prm_.h && s > -prm_.h && s < oz.width + prm_.h)) continue;
-    return fmt::format("; it is {:.3g} d0 from {} '{}': likely cause: flow back in through that boundary or a "
-                       "pressure wave reflected there (a channel between a velocity inlet and a pressure outlet "
-                       "rings at c / 4L; an inflow started faster than a few of its periods sets it ringing hard "
-                       "enough to reverse the flow at the outlet: raise inlet[].ramp_time; docs/method-notes.md, "
-                       "\"Open boundaries\")",
-                       xi / prm_.d0, oz.inlet ? "inlet" : "outlet", prm_.open_specs[z].name);
+    return fmt::format(
+        "; it is {:.3g} d0 from {} '{}': likely cause: flow back in through that boundary or a "
+        "pressure wave reflected there (a channel between a velocity inlet and a pressure outlet "
+        "rings at c / 4L; an inflow started faster than a few of its periods sets it ringing hard "
+        "enough to reverse the flow at the outlet: raise inlet[].ramp_time; docs/method-notes.md, "
+        "\"Open boundaries\")",
+        xi / prm_.d0, oz.inlet ? "inlet" : "outlet", prm_.open_specs[z].name);
   }
   // The nearest surface particle (a search over the boundary block: only on failure).
   real best = 1e300;
@@ -373,17 +402,19 @@ std::string Solver::likely_cause(Vec2 x) const {
   const std::string where = (g.is_wall ? "wall '" : "body '") + g.name + "'";
   char buf[640];
   if (d < 0.5)
-    std::snprintf(buf, sizeof buf,
-                  "; it is %.3g d0 from the surface of %s: likely cause: fluid squeezed against that surface "
-                  "(two surfaces closing faster than the fluid can leave the gap, or a contact too soft to keep "
-                  "them apart: see the collision.* keys; numerics.surface_guard sets the keep-out distance)",
-                  d, where.c_str());
+    std::snprintf(
+        buf, sizeof buf,
+        "; it is %.3g d0 from the surface of %s: likely cause: fluid squeezed against that surface "
+        "(two surfaces closing faster than the fluid can leave the gap, or a contact too soft to keep "
+        "them apart: see the collision.* keys; numerics.surface_guard sets the keep-out distance)",
+        d, where.c_str());
   else
-    std::snprintf(buf, sizeof buf,
-                  "; the nearest surface (%s) is %.3g d0 away: likely cause: a flow too fast or too under-resolved "
-                  "for this resolution (Mach number V/fluid.c above about 0.1, or too few particles across a "
-                  "body or a gap: lower resolution.d0 or raise fluid.c)",
-                  where.c_str(), d);
+    std::snprintf(
+        buf, sizeof buf,
+        "; the nearest surface (%s) is %.3g d0 away: likely cause: a flow too fast or too under-resolved "
+        "for this resolution (Mach number V/fluid.c above about 0.1, or too few particles across a "
+        "body or a gap: lower resolution.d0 or raise fluid.c)",
+        where.c_str(), d);
   return buf;
 }
 

@@ -49,16 +49,19 @@ void Solver::set_boundary_kinematics() {
   if (dev_) return dev_->surface_motion(group_motions(), false);
   for (const auto& g : groups_) {
     const GroupMotion m = group_motion(g);
-    for (std::size_t i = g.first; i < g.first + g.count; ++i) surface_kinematics(m, P_.local[i], P_.v[i], P_.acc[i]);
+    for (std::size_t i = g.first; i < g.first + g.count; ++i)
+      surface_kinematics(m, P_.local[i], P_.v[i], P_.acc[i]);
   }
 }
 
 // ---------------------------------------------------------------------------------------------
 // Rigid bodies
 
-void Solver::body_stage(real dt, real t_stage_end, const std::vector<Vec2>& v0, const std::vector<real>& omega0) {
+void Solver::body_stage(real dt, real t_stage_end, const std::vector<Vec2>& v0,
+                        const std::vector<real>& omega0) {
   for (std::size_t k = 0; k < groups_.size(); ++k) {
     RigidGroup& g = groups_[k];
+    if (g.removed) continue;
     if (g.motion == Motion::Free) {
       const Vec2 weight = body_weight(g.mass, g.area, prm_.rho0, prm_.gravity, prm_.gravity_in_fluid);
       const Vec2 force = g.force_pressure + g.force_viscous + g.force_collision + weight;
@@ -77,6 +80,7 @@ void Solver::body_stage(real dt, real t_stage_end, const std::vector<Vec2>& v0, 
 
 void Solver::body_update(real dt, real t_new) {
   for (auto& g : groups_) {
+    if (g.removed) continue;
     if (g.motion == Motion::Free) {
       free_body_update(g, g.vel_n, g.omega_n, dt);
     } else if (g.motion == Motion::Prescribed) {
@@ -89,7 +93,8 @@ void Solver::body_update(real dt, real t_new) {
         omega = b.omega;
         knots = &b.schedule;
       }
-      const PrescribedState st = prescribed_state(knots ? *knots : std::vector<MotionKnot>{}, vel, omega, t_new);
+      const PrescribedState st =
+          prescribed_state(knots ? *knots : std::vector<MotionKnot>{}, vel, omega, t_new);
       g.pos = g.pos0 + st.displacement;
       g.angle = g.angle0 + st.rotation;
       g.vel = st.vel;
@@ -117,17 +122,17 @@ real overlap_limit(const PhysicsParams& prm) { return -0.25 * prm.d0; }
 
 Failure Solver::overlap_failure(const RigidGroup& a, const std::string& other, real gap) const {
   const char* cause =
-      prm_.collision_model == ContactModel::Paper
-          ? "the P.38 repulsion did not keep them apart: raise collision.stiffness (or collision.range), or use "
-            "collision.model = \"spring_dashpot\""
+      prm_.collision_model == ContactModel::Paper ? "the P.38 repulsion did not keep them apart: raise "
+                                                    "collision.stiffness (or collision.range), or use "
+                                                    "collision.model = \"spring_dashpot\""
       : prm_.collision_stiffness > 0
           ? "contact too soft for this impact speed: raise collision.stiffness, or set it to 0 to derive it"
           : "contact too soft for this impact speed: lower collision.max_overlap or set collision.stiffness";
   Failure f;
   char buf[640];
   std::snprintf(buf, sizeof buf, "body '%s' overlaps %s by %.3g m (%.2f d0): %s",
-                prm_.bodies[static_cast<std::size_t>(a.body)].name.c_str(), other.c_str(), -gap, -gap / prm_.d0,
-                cause);
+                prm_.bodies[static_cast<std::size_t>(a.body)].name.c_str(), other.c_str(), -gap,
+                -gap / prm_.d0, cause);
   f.what = buf;
   f.position = a.pos;
   return f;
@@ -144,7 +149,7 @@ std::optional<Failure> Solver::collisions() {
   body_pos_.clear();
   body_bound_.clear();
   for (std::size_t k = 0; k < groups_.size(); ++k) {
-    if (groups_[k].is_wall) continue;
+    if (groups_[k].is_wall || groups_[k].removed) continue;
     body_groups_.push_back(k);
     body_pos_.push_back(groups_[k].pos);
     body_bound_.push_back(prm_.bodies[static_cast<std::size_t>(groups_[k].body)].shape.bounding_radius());
@@ -168,8 +173,8 @@ std::optional<Failure> Solver::find_contacts(real reach) {
     std::size_t a = body_groups_[p.first], b = body_groups_[p.second];
     Contact c = body_contact(placed(prm_, groups_[a]), placed(prm_, groups_[b]), domain_);
     if (c.gap < overlap_limit(prm_))
-      return overlap_failure(groups_[a], "body '" + prm_.bodies[static_cast<std::size_t>(groups_[b].body)].name + "'",
-                             c.gap);
+      return overlap_failure(
+          groups_[a], "body '" + prm_.bodies[static_cast<std::size_t>(groups_[b].body)].name + "'", c.gap);
     if (!(c.gap < reach) || (!is_free(a) && !is_free(b))) continue;
     if (!is_free(a)) {  // the force law gives side a the force: make it the free one
       std::swap(a, b);
@@ -182,15 +187,18 @@ std::optional<Failure> Solver::find_contacts(real reach) {
     for (std::size_t w = 0; w < prm_.walls.size(); ++w) {
       const Contact c = wall_contact_exact(placed(prm_, groups_[a]), wall_now(w));
       if (c.gap > 1e299) continue;
-      if (c.gap < overlap_limit(prm_)) return overlap_failure(groups_[a], "wall '" + groups_[w].name + "'", c.gap);
+      if (c.gap < overlap_limit(prm_))
+        return overlap_failure(groups_[a], "wall '" + groups_[w].name + "'", c.gap);
       if (c.gap < reach) contacts_.push_back({a, w, false, c, 0});  // wall groups come first, in wall order
     }
     // the open boundaries' screens hold bodies back like fixed walls (Case::open_screen_offset)
     for (std::size_t z = 0; z < prm_.open_screens.size(); ++z) {
+      if (removes_bodies(z)) continue;  // that screen removes the body instead (remove_bodies_at_outlets)
       const Contact c = wall_contact_exact(placed(prm_, groups_[a]), prm_.open_screens[z]);
       if (c.gap > 1e299) continue;
       if (c.gap < overlap_limit(prm_))
-        return overlap_failure(groups_[a], "the screen of open boundary '" + prm_.open_specs[z].name + "'", c.gap);
+        return overlap_failure(groups_[a], "the screen of open boundary '" + prm_.open_specs[z].name + "'",
+                               c.gap);
       if (c.gap < reach) contacts_.push_back({a, z, true, c, 0});
     }
   }
@@ -213,8 +221,9 @@ void Solver::hold_contact_speeds(real imminent) {
   for (const StepContact& sc : contacts_) {
     if (!(sc.c.gap < imminent)) continue;
     const RigidGroup &ga = groups_[sc.a], &gb = contact_partner(sc);
-    const Vec2 v = relative_velocity(contact_side(ga), contact_side(gb), domain_.separation(sc.c.point, ga.pos),
-                                     domain_.separation(sc.c.point, gb.pos));
+    const Vec2 v =
+        relative_velocity(contact_side(ga), contact_side(gb), domain_.separation(sc.c.point, ga.pos),
+                          domain_.separation(sc.c.point, gb.pos));
     const real speed = std::max(0.0, -dot(v, sc.c.normal));  // relative normal approach speed
     approach[sc.a] = std::max(approach[sc.a], speed);
     if (!gb.is_wall) approach[sc.b] = std::max(approach[sc.b], speed);
@@ -245,9 +254,9 @@ void Solver::contact_forces(real dt) {
   for (const StepContact& sc : contacts_) {
     RigidGroup& ga = groups_[sc.a];
     const RigidGroup& partner = contact_partner(sc);
-    const ContactLoad load =
-        spring_dashpot_load(sc.c, contact_side(ga), contact_side(partner), domain_.separation(sc.c.point, ga.pos),
-                            domain_.separation(sc.c.point, partner.pos), sc.k, law, dt);
+    const ContactLoad load = spring_dashpot_load(sc.c, contact_side(ga), contact_side(partner),
+                                                 domain_.separation(sc.c.point, ga.pos),
+                                                 domain_.separation(sc.c.point, partner.pos), sc.k, law, dt);
     ga.force_collision += load.force;
     ga.torque_collision += load.torque_a;
     const bool b_moves = !partner.is_wall && partner.motion == Motion::Free;
@@ -289,7 +298,7 @@ real Solver::characteristic_impact_speed() const {
   real U = 1e-3 * prm_.c;  // floor: a speed the explicit step always resolves
   const real g = norm(prm_.gravity);
   for (const RigidGroup& grp : groups_) {
-    if (grp.motion == Motion::Fixed) continue;
+    if (grp.motion == Motion::Fixed || grp.removed) continue;
     const Shape* shape = grp.is_wall ? nullptr : &prm_.bodies[static_cast<std::size_t>(grp.body)].shape;
     // the current speed of every moving solid (free and prescribed bodies, sliding walls)
     U = std::max(U, norm(grp.vel) + std::fabs(grp.omega) * (shape ? shape->bounding_radius() : 0.0));
@@ -343,7 +352,8 @@ std::optional<Failure> Solver::paper_collisions() {
       const PlacedBody pb = placed(prm_, gb);
       const Contact c = body_contact(pa, pb, domain_);
       if (c.gap < overlap_limit(prm_))
-        return overlap_failure(ga, "body '" + prm_.bodies[static_cast<std::size_t>(gb.body)].name + "'", c.gap);
+        return overlap_failure(ga, "body '" + prm_.bodies[static_cast<std::size_t>(gb.body)].name + "'",
+                               c.gap);
       const Vec2 F = repulsive_force(c, Ra, pb.shape->equivalent_radius(), k, eps);
       ga.force_collision += F;
       gb.force_collision -= F;
@@ -352,14 +362,17 @@ std::optional<Failure> Solver::paper_collisions() {
     for (std::size_t w = 0; w < prm_.walls.size(); ++w) {
       Contact c = wall_contact(pa, wall_now(w));
       if (c.gap > 1e299) continue;
-      if (c.gap < overlap_limit(prm_) && ga.motion == Motion::Free) return overlap_failure(ga, "a wall", c.gap);
+      if (c.gap < overlap_limit(prm_) && ga.motion == Motion::Free)
+        return overlap_failure(ga, "a wall", c.gap);
       c.gap *= 2;
       ga.force_collision += repulsive_force(c, Ra, Ra, k, eps);
     }
-    for (const WallPiece& screen : prm_.open_screens) {  // the open boundaries' screens, as walls
-      Contact c = wall_contact(pa, screen);
+    for (std::size_t z = 0; z < prm_.open_screens.size(); ++z) {  // the open boundaries' screens, as walls
+      if (removes_bodies(z)) continue;
+      Contact c = wall_contact(pa, prm_.open_screens[z]);
       if (c.gap > 1e299) continue;
-      if (c.gap < overlap_limit(prm_) && ga.motion == Motion::Free) return overlap_failure(ga, "a screen", c.gap);
+      if (c.gap < overlap_limit(prm_) && ga.motion == Motion::Free)
+        return overlap_failure(ga, "a screen", c.gap);
       c.gap *= 2;
       ga.force_collision += repulsive_force(c, Ra, Ra, k, eps);
     }
@@ -369,19 +382,21 @@ std::optional<Failure> Solver::paper_collisions() {
 
 std::optional<Failure> Solver::body_at_open_boundary() const {
   for (const RigidGroup& g : groups_) {
-    if (g.is_wall || prm_.open.empty()) continue;
+    if (g.is_wall || g.removed || prm_.open.empty()) continue;
     for (std::size_t z = 0; z < prm_.open.size(); ++z) {
       const OpenZone& oz = prm_.open[z];
       // the body's surface against the line itself (its screen lies farther in and holds it back)
-      const Contact c = wall_contact_exact(placed(prm_, g), WallPiece::segment(oz.from, oz.from + oz.width * oz.t));
+      const Contact c =
+          wall_contact_exact(placed(prm_, g), WallPiece::segment(oz.from, oz.from + oz.width * oz.t));
       if (!(c.gap < prm_.h)) continue;
       Failure f;
       f.position = g.pos;
-      f.what = fmt::format("body '{}' has come within h of {} '{}' ({:.3g} d0 from the line): it was pushed "
-                           "through the boundary's screen, which holds bodies {:.3g} d0 inside the line, and the "
-                           "buffer's fit and the body's loads would be cut off there",
-                           g.name, oz.inlet ? "inlet" : "outlet", prm_.open_specs[z].name, c.gap / prm_.d0,
-                           dot(prm_.open_screens[z].start() - oz.from, oz.n) / prm_.d0);
+      f.what = fmt::format(
+          "body '{}' has come within h of {} '{}' ({:.3g} d0 from the line): it was pushed "
+          "through the boundary's screen, which holds bodies {:.3g} d0 inside the line, and the "
+          "buffer's fit and the body's loads would be cut off there",
+          g.name, oz.inlet ? "inlet" : "outlet", prm_.open_specs[z].name, c.gap / prm_.d0,
+          dot(prm_.open_screens[z].start() - oz.from, oz.n) / prm_.d0);
       return f;
     }
   }

@@ -77,7 +77,8 @@ void Solver::bin_bodies_for_band(real reach) {
   // are among the bodies of its own and the 8 surrounding cells.
   real bound = 0;
   for (const RigidGroup& g : groups_)
-    if (!g.is_wall) bound = std::max(bound, prm_.bodies[static_cast<std::size_t>(g.body)].shape.bounding_radius());
+    if (!g.is_wall && !g.removed)
+      bound = std::max(bound, prm_.bodies[static_cast<std::size_t>(g.body)].shape.bounding_radius());
   const Vec2 L = domain_.size();
   const real cell = bound + reach;
   band_cells_x_ = std::max(1, static_cast<int>(L.x / cell));
@@ -86,23 +87,27 @@ void Solver::bin_bodies_for_band(real reach) {
   band_cell_bodies_.clear();
   std::vector<std::size_t> cell_of;
   for (std::size_t k = 0; k < groups_.size(); ++k) {
-    if (groups_[k].is_wall) continue;
+    if (groups_[k].is_wall || groups_[k].removed) continue;
     const std::size_t c = band_cell(domain_.wrap(groups_[k].pos));
     cell_of.push_back(c);
     ++band_cell_start_[c + 1];
   }
-  for (std::size_t c = 0; c + 1 < band_cell_start_.size(); ++c) band_cell_start_[c + 1] += band_cell_start_[c];
+  for (std::size_t c = 0; c + 1 < band_cell_start_.size(); ++c)
+    band_cell_start_[c + 1] += band_cell_start_[c];
   band_cell_bodies_.resize(cell_of.size());
   std::vector<std::size_t> next(band_cell_start_.begin(), band_cell_start_.end() - 1);
   std::size_t b = 0;
   for (std::size_t k = 0; k < groups_.size(); ++k)
-    if (!groups_[k].is_wall) band_cell_bodies_[next[cell_of[b++]]++] = static_cast<std::uint32_t>(k);
+    if (!groups_[k].is_wall && !groups_[k].removed)
+      band_cell_bodies_[next[cell_of[b++]]++] = static_cast<std::uint32_t>(k);
 }
 
 std::size_t Solver::band_cell(Vec2 x) const {
   const Vec2 L = domain_.size();
-  const int cx = std::clamp(static_cast<int>((x.x - domain_.lo.x) / L.x * band_cells_x_), 0, band_cells_x_ - 1);
-  const int cy = std::clamp(static_cast<int>((x.y - domain_.lo.y) / L.y * band_cells_y_), 0, band_cells_y_ - 1);
+  const int cx =
+      std::clamp(static_cast<int>((x.x - domain_.lo.x) / L.x * band_cells_x_), 0, band_cells_x_ - 1);
+  const int cy =
+      std::clamp(static_cast<int>((x.y - domain_.lo.y) / L.y * band_cells_y_), 0, band_cells_y_ - 1);
   return static_cast<std::size_t>(cy) * band_cells_x_ + cx;
 }
 
@@ -162,7 +167,8 @@ void Solver::build_load_band() {
   for (std::size_t f = 0; f < nf; ++f) {
     NearSolid near[kMaxNear];
     // buffer particles of open boundaries are set, not integrated: they carry no momentum balance
-    band_count_[f + 1] = in_load_band(nb + f) ? static_cast<std::uint32_t>(near_solids(x[nb + f], reach, near, kMaxNear)) : 0;
+    band_count_[f + 1] =
+        in_load_band(nb + f) ? static_cast<std::uint32_t>(near_solids(x[nb + f], reach, near, kMaxNear)) : 0;
   }
   for (std::size_t f = 0; f < nf; ++f) band_count_[f + 1] += band_count_[f];
   band_unsorted_.resize(band_count_[nf]);
@@ -249,7 +255,8 @@ void Solver::momentum_group_loads() {
     dev_->band_loads(a, group_pos_, group_level_, band_fp_, band_fv_, band_torque_);
   } else {
 #pragma omp parallel for schedule(static)
-    for (std::size_t e = 0; e < ne; ++e) band_entry_load(a, band_[e], band_fp_[e], band_fv_[e], band_torque_[e]);
+    for (std::size_t e = 0; e < ne; ++e)
+      band_entry_load(a, band_[e], band_fp_[e], band_fv_[e], band_torque_[e]);
   }
   for (std::size_t k = 0; k < ng; ++k) {
     RigidGroup& g = groups_[k];
@@ -273,13 +280,14 @@ namespace {
 /// each piece of at most pi/8 of an arc: P_h is exponential along it, with an exponent below
 /// 1e-2 in a weakly compressible fluid), and its moment about `about`.
 template <class SmoothPressure>
-void wall_stretch_load(const WallPiece& w, real s0, real s1, const SmoothPressure& p_h, const Domain& dom, Vec2 about,
-                       Vec2& force, real& torque) {
+void wall_stretch_load(const WallPiece& w, real s0, real s1, const SmoothPressure& p_h, const Domain& dom,
+                       Vec2 about, Vec2& force, real& torque) {
   constexpr real xg[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
   constexpr real wg[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
   const real span = s1 - s0;
   if (!(span > 0)) return;
-  const int pieces = w.is_arc() ? std::max(1, static_cast<int>(std::ceil(std::fabs(w.sweep()) * span / (M_PI / 8)))) : 1;
+  const int pieces =
+      w.is_arc() ? std::max(1, static_cast<int>(std::ceil(std::fabs(w.sweep()) * span / (M_PI / 8)))) : 1;
   const real piece_len = w.length() * span / pieces;
   for (int m = 0; m < pieces; ++m)
     for (int q = 0; q < 4; ++q) {
@@ -299,6 +307,7 @@ void Solver::smooth_pressure_load(const LoadArrays& a, std::size_t k, Vec2& forc
   const auto p_h = [&](Vec2 x) { return smooth_pressure(a, gk, x); };
   force = Vec2{};
   torque = 0;
+  if (g.removed) return;
   if (g.is_wall) {
     // -n int P_h ds over the wall's wetted stretches: not where a fixed body stands on it or
     // crosses it (the body carries those, below).
@@ -321,10 +330,12 @@ void Solver::smooth_pressure_load(const LoadArrays& a, std::size_t k, Vec2& forc
     // A fixed body standing on walls or crossing them: its wetted surface and the wall stretches
     // it covers close its part in the fluid region (area A_in), so by Gauss's theorem
     // -int_wetted P_h n ds = -rho_h g_h A_in - int_covered P_h n_wall ds.
-    const Vec2 f_area = (-a.group_level[k] * smooth_pressure_shape(a, b.centroid_in) / a.c2 * b.area_in) * a.g_h;
+    const Vec2 f_area =
+        (-a.group_level[k] * smooth_pressure_shape(a, b.centroid_in) / a.c2 * b.area_in) * a.g_h;
     force = f_area;
     torque = cross(domain_.separation(b.centroid_in, g.pos), f_area);
-    for (const BodyParams::Cover& c : b.covers) wall_stretch_load(wall_now(c.wall), c.s0, c.s1, p_h, domain_, g.pos, force, torque);
+    for (const BodyParams::Cover& c : b.covers)
+      wall_stretch_load(wall_now(c.wall), c.s0, c.s1, p_h, domain_, g.pos, force, torque);
     return;
   }
   std::size_t surface = 0;
@@ -341,7 +352,8 @@ void Solver::smooth_pressure_load(const LoadArrays& a, std::size_t k, Vec2& forc
   for (std::size_t i = g.first; i < g.first + g.count; ++i) {
     if (P_.kind[i] != Kind::Boundary) continue;
     const Vec2 xs = surface_position(domain_, mo, P_.local[i]);
-    const Vec2 t = (-smooth_pressure(a, gk, xs) * P_.ds[i]) * rotate(P_.normal_local[i], mo.cos_angle, mo.sin_angle);
+    const Vec2 t =
+        (-smooth_pressure(a, gk, xs) * P_.ds[i]) * rotate(P_.normal_local[i], mo.cos_angle, mo.sin_angle);
     force += t;
     torque += cross(domain_.separation(xs, g.pos), t);
   }

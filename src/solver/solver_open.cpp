@@ -20,7 +20,8 @@ namespace {
 /// Solves M y = p(e) for the two targets e (the ghost point, 0, and the buffer particle) by a
 /// Cholesky factorisation; false when a pivot loses all but 1e-6 of its diagonal entry (the
 /// points do not determine a plane: too few of them, or all on one line).
-bool linear_fit_targets(const std::vector<Vec2>& d, const std::vector<real>& w, Vec2 e, real y0[3], real y1[3]) {
+bool linear_fit_targets(const std::vector<Vec2>& d, const std::vector<real>& w, Vec2 e, real y0[3],
+                        real y1[3]) {
   real M[3][3] = {};
   for (std::size_t j = 0; j < d.size(); ++j) {
     const real p[3] = {1, d[j].x, d[j].y};
@@ -81,8 +82,11 @@ real Solver::inlet_speed(std::size_t zone, real s, real t) const {
   const real W = prm_.open[zone].width;
   real u = o.velocity;
   switch (o.profile) {
-    case InletProfile::Uniform: break;
-    case InletProfile::Parabolic: u = 4 * o.velocity * s * (W - s) / (W * W); break;
+    case InletProfile::Uniform:
+      break;
+    case InletProfile::Parabolic:
+      u = 4 * o.velocity * s * (W - s) / (W * W);
+      break;
     case InletProfile::Table: {
       const std::vector<Vec2>& tab = o.table;  // (s, u), s increasing (checked at load)
       if (s <= tab.front().x) {
@@ -199,7 +203,8 @@ void Solver::open_velocities(real t_mid) {
     // Outlet: the fluid's velocity at the ghost point (an even mirror, dV/dn = 0 at the line).
     if (ghost_start_[k] == ghost_start_[k + 1]) continue;
     Vec2 v;
-    for (std::uint32_t q = ghost_start_[k]; q < ghost_start_[k + 1]; ++q) v += ghost_val_[q] * P_.v[ghost_j_[q]];
+    for (std::uint32_t q = ghost_start_[k]; q < ghost_start_[k + 1]; ++q)
+      v += ghost_val_[q] * P_.v[ghost_j_[q]];
     P_.v[b] = v;
   }
 }
@@ -329,6 +334,140 @@ void Solver::open_transfer() {
     P_.id[to] = P_.next_id++;
     ++to;
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bodies removed at outlets (outlet[].bodies = "removed"; docs/method-notes.md, "Screens")
+
+void Solver::remove_bodies_at_outlets() {
+  removed_now_.clear();
+  if (prm_.open.empty()) return;
+  for (std::size_t k = 0; k < groups_.size(); ++k) {
+    const RigidGroup& g = groups_[k];
+    if (g.is_wall || g.removed || g.motion == Motion::Fixed) continue;
+    const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
+    for (std::size_t z = 0; z < prm_.open.size(); ++z) {
+      if (!removes_bodies(z)) continue;
+      // the body's surface has reached the line where a screen would hold it back
+      const Contact c =
+          wall_contact_exact(PlacedBody{&b.shape, &b.samples, g.pos, g.angle}, prm_.open_screens[z]);
+      if (!(c.gap <= 0)) continue;
+      remove_body(k, z);
+      break;
+    }
+  }
+}
+
+void Solver::remove_body(std::size_t k, std::size_t z) {
+  RigidGroup& g = groups_[k];
+  const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
+  const GroupMotion mo = group_motion(g);
+  const std::size_t first = g.first, count = g.count;
+
+  // The pressure in the body's place from its surface particles' P.20 pressures, carried inwards
+  // by the momentum balance of fluid that moves with the body, grad P = rho0 (f - a(x)), and
+  // weighted by inverse squared distance and surface length (every surface particle counts, so
+  // that no point deep inside is left without a value).
+  Vec2 f = prm_.body_force;
+  if (prm_.gravity_in_fluid) f += prm_.gravity;
+  const auto pressure_at = [&](Vec2 x) {
+    real num = 0, den = 0;
+    for (std::size_t i = first; i < first + count; ++i) {
+      if (P_.kind[i] != Kind::Boundary) continue;
+      const Vec2 d = domain_.separation(x, P_.x[i]);
+      const real w = P_.ds[i] / (dot(d, d) + real(1e-4) * prm_.d0 * prm_.d0);
+      num += w * (P_.p[i] + prm_.rho0 * dot(f - P_.acc[i], d));
+      den += w;
+    }
+    return den > 0 ? num / den : prm_.p0;
+  };
+
+  // The fill: the points of the fluid lattice (spacing d0 from the domain's corner) at least d0/2
+  // inside the body, as the scene keeps fluid at least d0/2 outside it; a body too thin for any
+  // gets the points inside it, or one particle at its centroid. Together they carry the fluid of
+  // the body's whole area, so that the fluid fills the region again exactly.
+  std::vector<Vec2> fill;
+  const real R = b.shape.bounding_radius(), d0 = prm_.d0;
+  for (const real depth : {0.5 * d0, 0.0}) {
+    const auto i0 = static_cast<long>(std::floor((g.pos.x - R - domain_.lo.x) / d0));
+    const auto j0 = static_cast<long>(std::floor((g.pos.y - R - domain_.lo.y) / d0));
+    const auto i1 = static_cast<long>(std::ceil((g.pos.x + R - domain_.lo.x) / d0));
+    const auto j1 = static_cast<long>(std::ceil((g.pos.y + R - domain_.lo.y) / d0));
+    for (long j = j0; j <= j1; ++j)
+      for (long i = i0; i <= i1; ++i) {
+        const Vec2 x{domain_.lo.x + (static_cast<real>(i) + 0.5) * d0,
+                     domain_.lo.y + (static_cast<real>(j) + 0.5) * d0};
+        const Vec2 rel = domain_.separation(x, g.pos);
+        if (b.shape.signed_distance(rotate(rel, mo.cos_angle, -mo.sin_angle)) <= -depth)
+          fill.push_back(domain_.wrap(x));
+      }
+    if (!fill.empty()) break;
+  }
+  if (fill.empty()) fill.push_back(g.pos);
+  std::vector<CreatedParticle> made;
+  made.reserve(fill.size());
+  real fill_mass = 0;
+  for (const Vec2 x : fill) {
+    const real p = pressure_at(x);
+    const real rho = density_from_pressure(p, prm_.rho0, prm_.c, prm_.p0);
+    const Vec2 r = domain_.separation(x, g.pos);
+    const real m = rho * b.shape.area() / static_cast<real>(fill.size());
+    made.push_back({x, g.vel + g.omega * Vec2{-r.y, r.x}, p, rho, m, Kind::Fluid});
+    fill_mass += m;
+  }
+
+  // The body's particles leave the boundary block; the later groups and the dummies' sources move
+  // down by `count`.
+  const auto erase = [&](auto& v) {
+    v.erase(v.begin() + static_cast<std::ptrdiff_t>(first),
+            v.begin() + static_cast<std::ptrdiff_t>(first + count));
+  };
+  erase(P_.x);
+  erase(P_.v);
+  erase(P_.rho);
+  erase(P_.p);
+  erase(P_.m);
+  erase(P_.kind);
+  erase(P_.group);
+  erase(P_.id);
+  erase(P_.local);
+  erase(P_.normal_local);
+  erase(P_.ds);
+  erase(P_.acc);
+  erase(P_.normal);
+  erase(P_.source);
+  P_.n_boundary -= count;
+  for (std::int32_t& s : P_.source)
+    if (s >= static_cast<std::int32_t>(first + count)) s -= static_cast<std::int32_t>(count);
+  for (std::size_t q = k + 1; q < groups_.size(); ++q) groups_[q].first -= count;
+  g.count = 0;
+  g.removed = true;
+  g.removed_at = static_cast<std::int32_t>(z);
+  g.removed_time = t_;
+  g.vel = g.acc = g.vel_n = Vec2{};
+  g.omega = g.alpha = g.omega_n = 0;
+  g.force_pressure = g.force_viscous = g.force_collision = Vec2{};
+  g.torque = g.torque_collision = 0;
+  g.contact_speed = 0;
+
+  // The fill joins the fluid block at its end, with new ids.
+  const std::size_t to = P_.size();
+  P_.resize(to + made.size());
+  for (std::size_t q = 0; q < made.size(); ++q) {
+    const CreatedParticle& c = made[q];
+    P_.x[to + q] = c.x;
+    P_.v[to + q] = c.v;
+    P_.p[to + q] = c.p;
+    P_.rho[to + q] = c.rho;
+    P_.m[to + q] = c.m;
+    P_.kind[to + q] = Kind::Fluid;
+    P_.group[to + q] = -1;
+    P_.id[to + q] = P_.next_id++;
+  }
+  OpenFlux& fl = open_flux_[z];
+  ++fl.bodies_removed;
+  fl.body_fill_mass += fill_mass;
+  removed_now_.push_back({k, z, made.size(), fill_mass});
 }
 
 }  // namespace particula

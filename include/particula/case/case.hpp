@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cmath>
-
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -37,10 +36,10 @@ enum class WallShape { Segment, Arc };
 /// slide along itself at `velocity`; any wall may turn rigidly about `pivot` at the rate `omega`.
 struct WallSpec {
   std::string name;
-  Vec2 from, to;   // segment; for an arc its end points (derived at load)
-  Vec2 velocity;   // must be tangential (parallel to to - from)
+  Vec2 from, to;  // segment; for an arc its end points (derived at load)
+  Vec2 velocity;  // must be tangential (parallel to to - from)
   WallShape shape = WallShape::Segment;
-  Vec2 center{};   // arc
+  Vec2 center{};  // arc
   real radius = 0, start_angle = 0, end_angle = 0;
   real omega = 0;  // rigid rotation rate about `pivot` (rad/s, counter-clockwise), from t = 0
   Vec2 pivot{};
@@ -62,16 +61,21 @@ enum class OpenKind { Inlet, Outlet };
 /// between.
 enum class InletProfile { Uniform, Parabolic, Table };
 
+/// What an outlet does with a body carried to it: hold it back at its screen, or remove it
+/// there (docs/method-notes.md, "Screens").
+enum class OutletBodies { Held, Removed };
+
 struct OpenSpec {
   std::string name;
   OpenKind kind = OpenKind::Inlet;
   Vec2 from, to;
   InletProfile profile = InletProfile::Uniform;  // inlet
-  real velocity = 0;                             // inlet: uniform speed or parabola peak (m/s, into the fluid)
-  std::vector<Vec2> table;                       // inlet, profile table: (s in m from `from`, speed in m/s)
-  real ramp_time = 0;                            // inlet: speed ramped as (1 - cos(pi t / T)) / 2 until T; 0 = none
-  real pressure = 0;                             // outlet: P on the line is fluid.p0 + pressure (Pa)
-  int layers = 0;                                // rows of buffer particles; 0 = ceil(h / d0) + 1
+  real velocity = 0;        // inlet: uniform speed or parabola peak (m/s, into the fluid)
+  std::vector<Vec2> table;  // inlet, profile table: (s in m from `from`, speed in m/s)
+  real ramp_time = 0;       // inlet: speed ramped as (1 - cos(pi t / T)) / 2 until T; 0 = none
+  real pressure = 0;        // outlet: P on the line is fluid.p0 + pressure (Pa)
+  OutletBodies bodies = OutletBodies::Held;  // outlet: bodies held at its screen or removed there
+  int layers = 0;                            // rows of buffer particles; 0 = ceil(h / d0) + 1
 
   /// Unit tangent (from -> to) and inward normal (its left).
   Vec2 tangent() const { return (to - from) / norm(to - from); }
@@ -128,19 +132,20 @@ struct MotionKnot {
 struct BodySpec {
   std::string name;
   BodyShape shape = BodyShape::Circle;
-  Vec2 center;                 // circle, ellipse: centroid; half_disc: centre of the full disc
-  real radius = 0;             // circle, half_disc
-  Vec2 semi_axes;              // ellipse: (a along the body x axis, b along the body y axis)
-  std::vector<Vec2> vertices;  // polygon: vertices in world coordinates at t = 0 (angle applies about the centroid)
+  Vec2 center;      // circle, ellipse: centroid; half_disc: centre of the full disc
+  real radius = 0;  // circle, half_disc
+  Vec2 semi_axes;   // ellipse: (a along the body x axis, b along the body y axis)
+  std::vector<Vec2>
+      vertices;  // polygon: vertices in world coordinates at t = 0 (angle applies about the centroid)
   std::vector<std::vector<Vec2>> holes;  // polygon: holes (fluid inside), world coordinates at t = 0
   real angle = 0;
-  real density = 0;            // kg/m^3 (free bodies)
+  real density = 0;  // kg/m^3 (free bodies)
   BodyMotion motion = BodyMotion::Free;
-  Vec2 velocity;               // initial velocity (free) or constant prescribed velocity
-  real omega = 0;              // initial / constant prescribed angular velocity (rad/s)
+  Vec2 velocity;                     // initial velocity (free) or constant prescribed velocity
+  real omega = 0;                    // initial / constant prescribed angular velocity (rad/s)
   std::vector<MotionKnot> schedule;  // prescribed: piecewise-linear in time (overrides velocity/omega)
-  Vec2 reference_velocity;     // coefficients.csv: free stream relative to the body (0 = [analysis]'s)
-  real reference_length = 0;   // coefficients.csv: length in the coefficients (0 = [analysis]'s)
+  Vec2 reference_velocity;           // coefficients.csv: free stream relative to the body (0 = [analysis]'s)
+  real reference_length = 0;         // coefficients.csv: length in the coefficients (0 = [analysis]'s)
 };
 
 struct Case {
@@ -167,8 +172,8 @@ struct Case {
 
   // [time]
   real t_end = 0;
-  real cfl = 0.5;           // alpha of P.29
-  real dt_max = 0;          // 0 = no cap
+  real cfl = 0.5;              // alpha of P.29
+  real dt_max = 0;             // 0 = no cap
   std::int64_t max_steps = 0;  // 0 = unlimited
 
   // [numerics]
@@ -211,11 +216,11 @@ struct Case {
   ContactModel collision_model = ContactModel::SpringDashpot;
   real collision_stiffness = 0;  // spring_dashpot: k_n (N/m^2), 0 = derived; paper: k of P.38, 0 = off
   real collision_range = 0;      // contact distance delta_c (m); 0 = 0.5 d0 (spring_dashpot), 3 d0 (paper)
-  real collision_restitution = 0.8;       // e of a dry impact (spring_dashpot)
-  real collision_friction = 0;            // Coulomb coefficient mu (spring_dashpot)
-  real collision_max_overlap = 0.1;       // delta_max / d0 of the derived stiffness
-  bool collision_lubrication = true;      // squeeze-film correction below the resolution
-  real collision_lubrication_range = 0;   // g_range (m); 0 = 2 d0
+  real collision_restitution = 0.8;      // e of a dry impact (spring_dashpot)
+  real collision_friction = 0;           // Coulomb coefficient mu (spring_dashpot)
+  real collision_max_overlap = 0.1;      // delta_max / d0 of the derived stiffness
+  bool collision_lubrication = true;     // squeeze-film correction below the resolution
+  real collision_lubrication_range = 0;  // g_range (m); 0 = 2 d0
 
   std::vector<WallSpec> walls;
   std::vector<ProbeSpec> probes;

@@ -33,7 +33,7 @@
 namespace particula {
 
 /// Bump when the layout or any field list below changes; older files are then refused.
-inline constexpr std::uint32_t kCheckpointVersion = 9;
+inline constexpr std::uint32_t kCheckpointVersion = 10;
 
 /// When an output stream ("bodies", "snapshots", "probe:<name>") was last written on its
 /// regular schedule. A resumed run drops rows after this time (the extra final-state rows of an
@@ -45,7 +45,8 @@ struct OutputMark {
 
 struct Checkpoint {
   std::string case_toml;  // the resolved case (resolved_case_toml), without overrides applied later
-  std::uint64_t case_hash = 0;  // the run's case identity (case_identity_hash), as in its run directory's marker
+  std::uint64_t case_hash =
+      0;  // the run's case identity (case_identity_hash), as in its run directory's marker
   real time = 0;
   std::int64_t step = 0;
   SolverCounters counters;
@@ -105,9 +106,9 @@ Checkpoint read_checkpoint(const std::filesystem::path& file);
 // static_asserts in src/run/checkpoint.cpp fail until you do.
 
 inline constexpr std::size_t kParticlesFields = 16;  // n_boundary, next_id + 14 arrays
-inline constexpr std::size_t kRigidGroupFields = 25;
+inline constexpr std::size_t kRigidGroupFields = 28;
 inline constexpr std::size_t kSolverCountersFields = 10;
-inline constexpr std::size_t kOpenFluxFields = 4;
+inline constexpr std::size_t kOpenFluxFields = 6;
 
 template <class Ar, class P>
 void particles_fields(Ar& ar, P& p) {
@@ -136,6 +137,9 @@ void rigid_group_fields(Ar& ar, G& g) {
   ar(g.name);
   ar(g.motion);
   ar(g.is_wall);
+  ar(g.removed);
+  ar(g.removed_at);
+  ar(g.removed_time);
   ar(g.pos);
   ar(g.vel);
   ar(g.acc);
@@ -180,6 +184,8 @@ void open_flux_fields(Ar& ar, F& f) {
   ar(f.backflow_mass);
   ar(f.created);
   ar(f.deleted);
+  ar(f.bodies_removed);
+  ar(f.body_fill_mass);
 }
 
 namespace checkpoint_detail {

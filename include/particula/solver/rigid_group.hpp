@@ -3,6 +3,7 @@
 // every step, never advanced by x += dt*u.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,11 +17,16 @@ struct RigidGroup {
   std::string name;
   Motion motion = Motion::Fixed;
   bool is_wall = true;
+  // a body taken out of the run at an outlet with `bodies = "removed"` (Solver::remove_body): from
+  // then on it has no particles, loads, contacts or motion, and no rows in bodies.csv
+  bool removed = false;
+  std::int32_t removed_at = -1;  // the open boundary (index into PhysicsParams::open) that removed it
+  real removed_time = 0;         // s
 
   // kinematic state (the frame origin is the centre of mass for bodies)
   Vec2 pos, vel, acc;
   real angle = 0, omega = 0, alpha = 0;
-  Vec2 pos0;         // position at t = 0 (prescribed motion: pos = pos0 + vel t)
+  Vec2 pos0;  // position at t = 0 (prescribed motion: pos = pos0 + vel t)
   real angle0 = 0;
 
   // boundary particles [first, first + count) of the particle arrays

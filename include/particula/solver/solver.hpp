@@ -31,9 +31,9 @@ struct BodyParams {
   Shape shape;
   std::vector<SurfaceSample> samples;  // body frame, used by the contact model
   BodyMotion motion = BodyMotion::Free;
-  Vec2 velocity;                       // prescribed constant velocity (no schedule)
+  Vec2 velocity;  // prescribed constant velocity (no schedule)
   real omega = 0;
-  std::vector<MotionKnot> schedule;    // prescribed piecewise-linear motion
+  std::vector<MotionKnot> schedule;  // prescribed piecewise-linear motion
   // A fixed body standing on walls or crossing them (scene: its part beyond the walls left out):
   // the stretches of walls it covers, and the area of its part in the fluid region with that
   // part's centroid (world frame). The smooth pressure's force on it is taken over its wetted
@@ -56,15 +56,15 @@ struct PhysicsParams {
   Vec2 body_force;
   real cfl = 0.5;
   real dt_max = 0;
-  bool fatehi_manzari = true;  // false: Morris Laplacian (baseline)
-  bool single_layer = true;    // false: dummy-particle boundary (baseline)
-  bool kernel_normals = true;  // false: analytic normals
+  bool fatehi_manzari = true;   // false: Morris Laplacian (baseline)
+  bool single_layer = true;     // false: dummy-particle boundary (baseline)
+  bool kernel_normals = true;   // false: analytic normals
   bool momentum_force = false;  // loads from the fluid's momentum balance (true) or P.26-P.27 (false)
   real rhie_chow_factor = 1;
   real odd_even_damping = 0.005;  // alpha of the velocity odd-even damping, kappa = alpha c h
   real shifting_beta = 0.05;
   real surface_guard = 0.25;  // keep-out distance of fluid from surfaces, in d0 (0: off)
-  real film_gap = 2.0;        // gap below which fluid between two surfaces is an unresolved film, in d0 (0: off)
+  real film_gap = 2.0;  // gap below which fluid between two surfaces is an unresolved film, in d0 (0: off)
   int wall_pressure_sweeps = 1;
   real rho_min_ratio = 0.5, rho_max_ratio = 2.0;
   int reorder_interval = 50;  // steps between cell reorderings of the fluid block
@@ -76,10 +76,10 @@ struct PhysicsParams {
   real collision_range = 0;      // contact distance delta_c (m); 0 = 0.5 d0 (spring_dashpot), 3 d0 (paper)
   real collision_restitution = 0.8;
   real collision_friction = 0;
-  real collision_max_overlap = 0.1;       // delta_max / d0
+  real collision_max_overlap = 0.1;  // delta_max / d0
   bool collision_lubrication = true;
-  real collision_lubrication_range = 0;   // m; 0 = 2 d0
-  bool cuda = false;             // particle passes on the GPU (--backend cuda)
+  real collision_lubrication_range = 0;  // m; 0 = 2 d0
+  bool cuda = false;                     // particle passes on the GPU (--backend cuda)
   // open boundaries (boundary/open_boundary.hpp): inlets then outlets, the zone and its case entry
   std::vector<OpenZone> open;
   std::vector<OpenSpec> open_specs;
@@ -90,25 +90,28 @@ struct PhysicsParams {
 
 /// What crossed an open boundary (zone) since the start of the run; checkpointed.
 struct OpenFlux {
-  real mass = 0;           // kg/m: into the fluid at an inlet, out of it at an outlet
-  real backflow_mass = 0;  // kg/m: the other way: fluid that left through an inlet (deleted), or
-                           // that came back in through an outlet; the net flux is mass - backflow
-  std::int64_t created = 0;  // buffer particles created (behind those that entered the fluid)
-  std::int64_t deleted = 0;  // particles deleted (outlet: past the buffer; inlet: backflow)
+  real mass = 0;                    // kg/m: into the fluid at an inlet, out of it at an outlet
+  real backflow_mass = 0;           // kg/m: the other way: fluid that left through an inlet (deleted), or
+                                    // that came back in through an outlet; the net flux is mass - backflow
+  std::int64_t created = 0;         // buffer particles created (behind those that entered the fluid)
+  std::int64_t deleted = 0;         // particles deleted (outlet: past the buffer; inlet: backflow)
+  std::int64_t bodies_removed = 0;  // outlet with bodies = "removed": bodies taken out at its screen
+  real body_fill_mass = 0;          // kg/m: fluid created in their places (it enters the fluid there)
 };
 
 /// Counters of guarded events (written to the run log).
 struct SolverCounters {
-  std::int64_t singular_B = 0;      // renormalization matrix singular -> B = I
-  std::int64_t singular_Bhat = 0;   // fluid particle's Laplacian system singular -> Bhat = k I
+  std::int64_t singular_B = 0;          // renormalization matrix singular -> B = I
+  std::int64_t singular_Bhat = 0;       // fluid particle's Laplacian system singular -> Bhat = k I
   std::int64_t wall_pressure_kept = 0;  // P.20 denominator vanished -> previous P kept
-  std::int64_t wall_pressure_extrapolated = 0;  // P.20 ill-conditioned (sharp corner, contact wedge) -> extrapolated
+  std::int64_t wall_pressure_extrapolated =
+      0;  // P.20 ill-conditioned (sharp corner, contact wedge) -> extrapolated
   std::int64_t wall_pressure_extrapolated_far = 0;  // fluid out of P.20's reach (narrow gap) -> extrapolated
-  std::int64_t normal_fallback = 0;     // P.18 sum vanished -> analytic normal used
-  std::int64_t surface_pushed = 0;      // fluid particle put back to the keep-out distance of a surface
-  std::int64_t gap_squeezed = 0;        // fluid particle centred in a gap narrower than twice that
-  std::int64_t isolated_left_out = 0;   // isolated fluid particle left out of P.20 (particle-steps)
-  std::int64_t open_fit_fallback = 0;   // buffer particle whose mirrored fit was singular -> Shepard mean
+  std::int64_t normal_fallback = 0;                 // P.18 sum vanished -> analytic normal used
+  std::int64_t surface_pushed = 0;     // fluid particle put back to the keep-out distance of a surface
+  std::int64_t gap_squeezed = 0;       // fluid particle centred in a gap narrower than twice that
+  std::int64_t isolated_left_out = 0;  // isolated fluid particle left out of P.20 (particle-steps)
+  std::int64_t open_fit_fallback = 0;  // buffer particle whose mirrored fit was singular -> Shepard mean
 };
 
 /// The counters by the names summary.json and the Python module give them (one list for both).
@@ -135,7 +138,9 @@ struct PhaseTimes {
   double bodies = 0;         // loads, collisions, rigid motion, surface placement
   double integration = 0;    // end-of-step averages, dt, health check
   double shifting = 0;       // pressure gradient of the new state and the shift
-  double total() const { return neighbors + geometry + operators + wall_pressure + bodies + integration + shifting; }
+  double total() const {
+    return neighbors + geometry + operators + wall_pressure + bodies + integration + shifting;
+  }
 };
 
 /// A numerical failure detected after a step (exit code 3).
@@ -201,6 +206,15 @@ class Solver {
   const std::vector<OpenFlux>& open_flux() const { return open_flux_; }
   /// Restores the fluxes of a checkpoint (one per open boundary).
   void set_open_flux(const std::vector<OpenFlux>& f) { open_flux_ = f; }
+
+  /// A body taken out of the run at an outlet in the last step (remove_bodies_at_outlets).
+  struct BodyRemoval {
+    std::size_t group = 0, zone = 0;
+    std::size_t fill_particles = 0;
+    real fill_mass = 0;  // kg/m
+  };
+  /// The bodies removed in the last step (empty in most steps), for the run log.
+  const std::vector<BodyRemoval>& removed_in_last_step() const { return removed_now_; }
 
   /// Rebuilds neighbours and position-only quantities for the current positions (used before
   /// output and by tests of the operators).
@@ -331,9 +345,19 @@ class Solver {
   GroupMotion group_motion(const RigidGroup& g) const;
   void reorder_fluid();
   std::optional<Failure> check_health() const;
-  /// A body whose bounding circle has come within h of an open boundary's line (bodies cannot
-  /// pass through open boundaries yet): a failure naming both.
+  /// A body whose surface has come within h of an open boundary's line (its screen should have
+  /// held it back, or removed it): a failure naming both.
   std::optional<Failure> body_at_open_boundary() const;
+  /// Whether open boundary z is an outlet with bodies = "removed" (its screen removes bodies
+  /// instead of holding them).
+  bool removes_bodies(std::size_t z) const {
+    return !prm_.open[z].inlet && prm_.open_specs[z].bodies == OutletBodies::Removed;
+  }
+  /// Takes out every body whose surface has reached the screen of an outlet that removes bodies.
+  void remove_bodies_at_outlets();
+  /// Takes body group k out of the run at open boundary z: its particles leave the boundary
+  /// block and fluid particles fill the place it held (docs/method-notes.md, "Screens").
+  void remove_body(std::size_t k, std::size_t z);
   /// What a failure at fluid position x most likely comes from, for the exit-3 message.
   std::string likely_cause(Vec2 x) const;
   real max_speed() const;
@@ -376,7 +400,7 @@ class Solver {
   // GPU backend: the device holds the particle state; the host copy is refreshed on demand
   std::unique_ptr<DeviceBackend> dev_;
   mutable bool host_current_ = true;  // P_ equals the device state
-  bool device_current_ = true;         // the device state equals P_
+  bool device_current_ = true;        // the device state equals P_
   std::vector<GroupLoads> loads_;
   // band momentum balance (numerics.force = momentum): entries of this step by group, the first
   // entry of each group (size groups + 1), per-entry loads and scratch
@@ -408,7 +432,7 @@ class Solver {
   void hold_sustained_load(RigidGroup& a, RigidGroup* b, Vec2 normal, real k, real delta_max);
   /// The other side of a contact: its group, or a fixed wall at rest standing for a screen.
   const RigidGroup& contact_partner(const StepContact& sc) const;
-  real contact_dt_ = 0;  // dt limit of the active and imminent contacts, 0 = none
+  real contact_dt_ = 0;                   // dt limit of the active and imminent contacts, 0 = none
   std::vector<std::size_t> body_groups_;  // group index of each body, in group order
   std::vector<Vec2> body_pos_;
   std::vector<real> body_bound_;
@@ -433,6 +457,7 @@ class Solver {
     Kind kind;
   };
   std::vector<CreatedParticle> created_;
+  std::vector<BodyRemoval> removed_now_;
   std::vector<unsigned char> keep_;
 
   // reordering scratch
