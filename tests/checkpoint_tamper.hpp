@@ -143,6 +143,12 @@ inline std::vector<Tamper> structured() {
       {"free body made fixed", [](Checkpoint& k) { k.groups[4].motion = Motion::Fixed; }},
       {"motion out of range", [](Checkpoint& k) { k.groups[4].motion = static_cast<Motion>(9); }},
       {"body made a wall", [](Checkpoint& k) { k.groups[5].is_wall = true; }},
+      {"body with particles marked removed", [](Checkpoint& k) {
+         k.groups[4].removed = true;
+         k.groups[4].removed_at = 0;
+       }},
+      {"removal at an open boundary of a closed box", [](Checkpoint& k) { k.groups[4].removed_at = 0; }},
+      {"NaN removal time", [=](Checkpoint& k) { k.groups[4].removed_time = nan; }},
       {"NaN position", [=](Checkpoint& k) { k.particles.x[fluid(k)].x = nan; }},
       {"infinite velocity", [=](Checkpoint& k) { k.particles.v[fluid(k)].y = inf; }},
       {"zero density", [=](Checkpoint& k) { k.particles.rho[fluid(k)] = 0; }},
