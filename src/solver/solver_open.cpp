@@ -322,6 +322,12 @@ void Solver::open_transfer() {
     ++to;
   }
   if (to == n && created.empty()) return;
+  P_.resize(to);
+  append_created(created);
+}
+
+void Solver::append_created(const std::vector<CreatedParticle>& created) {
+  std::size_t to = P_.size();
   P_.resize(to + created.size());
   for (const CreatedParticle& c : created) {
     P_.x[to] = c.x;
@@ -451,19 +457,7 @@ void Solver::remove_body(std::size_t k, std::size_t z) {
   g.contact_speed = 0;
 
   // The fill joins the fluid block at its end, with new ids.
-  const std::size_t to = P_.size();
-  P_.resize(to + made.size());
-  for (std::size_t q = 0; q < made.size(); ++q) {
-    const CreatedParticle& c = made[q];
-    P_.x[to + q] = c.x;
-    P_.v[to + q] = c.v;
-    P_.p[to + q] = c.p;
-    P_.rho[to + q] = c.rho;
-    P_.m[to + q] = c.m;
-    P_.kind[to + q] = Kind::Fluid;
-    P_.group[to + q] = -1;
-    P_.id[to + q] = P_.next_id++;
-  }
+  append_created(made);
   OpenFlux& fl = open_flux_[z];
   ++fl.bodies_removed;
   fl.body_fill_mass += fill_mass;

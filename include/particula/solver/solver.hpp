@@ -457,6 +457,8 @@ class Solver {
     Kind kind;
   };
   std::vector<CreatedParticle> created_;
+  /// Appends `created` at the end of the fluid block, with new ids (Particles::next_id).
+  void append_created(const std::vector<CreatedParticle>& created);
   std::vector<BodyRemoval> removed_now_;
   std::vector<unsigned char> keep_;
 
