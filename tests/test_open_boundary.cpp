@@ -122,17 +122,6 @@ TEST(OpenBoundary, OneAndTwoThreadsAgreeBitwiseAcrossCreationsAndDeletions) {
   }
 }
 
-TEST(OpenBoundary, TheGpuBackendRefusesOpenBoundariesClearly) {
-  Scene sc = build_scene(channel());
-  sc.params.cuda = true;
-  try {
-    Solver s(sc.params, sc.domain, sc.particles, sc.groups);
-    FAIL() << "accepted";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("CPU backend only"), std::string::npos) << e.what();
-  }
-}
-
 TEST(OpenBoundary, CheckpointsCarryCreatedParticlesAndAreChecked) {
   Solver s = make_solver(fast_channel());
   for (int k = 0; k < 200; ++k) ASSERT_FALSE(s.step().has_value());

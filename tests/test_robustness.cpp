@@ -400,8 +400,9 @@ TEST(RobustnessSuite, GroupHasTheIssueCasesAtTwoLevels) {
     const std::string text = cli_test::read_text(file);
     // the cases with open boundaries are shipped examples (cases/), longer than CI allows
     const bool example = e.case_file.rfind("cases/robustness/", 0) != 0;
-    if (!example)
+    if (!example) {
       EXPECT_EQ(text.rfind("# Robustness: ", 0), 0u) << "a header comment saying what the case is";
+    }
     EXPECT_NE(text.find("# Checks: "), std::string::npos) << "and what it checks";
     // default numerics: the case is about untuned settings (no such table)
     EXPECT_EQ(text.find("\n[numerics]"), std::string::npos);
@@ -415,7 +416,9 @@ TEST(RobustnessSuite, GroupHasTheIssueCasesAtTwoLevels) {
     // small enough for CI at the coarse level (the dilute suspensions: 15.7 mm long for 6 and 12
     // circles at area fractions 0.05 and 0.1)
     const Scene s = build_scene(coarse);
-    if (!example) EXPECT_LT(s.particles.size(), e.name.rfind("dilute_shear", 0) == 0 ? 9500u : 8000u);
+    if (!example) {
+      EXPECT_LT(s.particles.size(), e.name.rfind("dilute_shear", 0) == 0 ? 9500u : 8000u);
+    }
   }
   EXPECT_GE(names.size(), 10u);
   for (const char* must : {"settling_pile", "mixed_shapes", "drop_rebound", "incline_slide",

@@ -516,8 +516,8 @@ std::vector<SectionSpec> make_sections() {
           "the fluid side of the boundary's screen, at least the contact distance from it. The screen "
           "is a line parallel to the segment, max(L_b + h, 5 h with numerics.force = \"momentum\") "
           "inside the fluid, that free bodies meet like a fixed wall and the fluid passes (a "
-          "distributor plate, a sieve): it keeps bodies clear of the fluid that sets the buffer. Open "
-          "boundaries run on the CPU backend only (for now)."),
+          "distributor plate, a sieve): it keeps bodies clear of the fluid that sets the buffer. With "
+          "--backend cuda the open-boundary passes run on the host, the rest on the GPU."),
       open_section(
           "outlet", &Case::outlets, OpenKind::Outlet,
           "Outlets, one [[outlet]] table each: a straight segment on an edge of the domain where fluid "

@@ -92,6 +92,13 @@ void each(std::size_t first, std::size_t last, F f) {
   check(cudaGetLastError(), "kernel launch");
 }
 
+/// A buffer particle's fields as the host's open-boundary passes set them.
+struct BufferState {
+  std::uint32_t i = 0;
+  Vec2 x, v;
+  real p = 0, rho = 0;
+};
+
 struct GroupRange {
   std::uint32_t first = 0, count = 0;
   Vec2 pos;
@@ -147,6 +154,7 @@ class CudaBackend final : public DeviceBackend {
         fatehi_manzari_(prm.fatehi_manzari), single_layer_(prm.single_layer) {
     counters_.resize(kCounters);
     zero_counters();
+    zones_.upload(prm.open);  // the open lines, for the shifting limit next to them
     // Surface particles are addressed through their group index: check the layout once.
     for (std::size_t i = 0; i < P.n_boundary; ++i)
       if (P.group[i] < 0) throw std::logic_error("cuda backend: boundary particle without a rigid group");
@@ -252,13 +260,15 @@ class CudaBackend final : public DeviceBackend {
     lap_w_.resize(slots);
     std::uint32_t* jj = j_.data();
     real* dmin2 = scratch_real_.data();
+    const Kind* kinds = kind_.data();
     each(0, n, [=] __device__(std::size_t i) {
       std::size_t q = i;
       real m = 1e300;
       visit_neighbors(grid, h2, x, sorted, cstart, cell_of[i], static_cast<std::uint32_t>(i), [&](std::uint32_t j, real d2) {
         jj[q] = j;
         q += n;
-        m = d2 < m ? d2 : m;
+        // two buffer particles do not set the step (Solver::open_min_distance)
+        if (!(is_buffer(kinds[i]) && is_buffer(kinds[j]))) m = d2 < m ? d2 : m;
       });
       dmin2[i] = m;
     });
@@ -287,13 +297,14 @@ class CudaBackend final : public DeviceBackend {
     const real one_neighbour = d0 * d0 * kernel_.W(d0);
     each(0, n, [=] __device__(std::size_t i) {
       const GeometryAt g = geometry_at(c, i, d0, grad_w, lap_w);
-      isolated_out[i] = i >= nb && isolated(g.others_fluid_support, one_neighbour, g.near.a) ? 1 : 0;
+      isolated_out[i] = i >= nb && kind[i] == Kind::Fluid && isolated(g.others_fluid_support, one_neighbour, g.near.a) ? 1 : 0;
       if (isolated_out[i]) atomicAdd(&counters[kIsolatedLeftOut], 1ull);
       shift_dir[i] = g.shift_direction;
       lap_esum[i] = g.lap_esum;
       near_a[i] = g.near.a;
       near_b[i] = g.near.b;
-      if (kind[i] == Kind::Dummy) return;
+      // dummies, and buffer particles whose support is one-sided by design, are not events
+      if (kind[i] == Kind::Dummy || is_buffer(kind[i])) return;
       if (!g.B_ok) atomicAdd(&counters[kSingularB], 1ull);
       if (!g.Bhat_ok) atomicAdd(&counters[kSingularBhat], 1ull);
       if (i < nb && kernel_normals && kind[i] == Kind::Boundary && !kernel_normal(g.normal_sum, normal[i]))
@@ -441,6 +452,30 @@ class CudaBackend final : public DeviceBackend {
 
   void download_positions(std::vector<Vec2>& x) override { x_.download(x); }
 
+  void download_pressures(std::vector<real>& p) override { p_.download(p); }
+
+  void set_buffer_particles(const std::vector<std::uint32_t>& index, const Particles& P) override {
+    buffer_host_.resize(index.size());
+    for (std::size_t k = 0; k < index.size(); ++k) {
+      const std::uint32_t i = index[k];
+      buffer_host_[k] = BufferState{i, P.x[i], P.v[i], P.p[i], P.rho[i]};
+    }
+    if (buffer_host_.empty()) return;
+    buffer_.upload(buffer_host_);
+    const BufferState* b = buffer_.data();
+    Vec2* x = x_.data();
+    Vec2* v = v_.data();
+    real* p = p_.data();
+    real* rho = rho_.data();
+    each(0, buffer_host_.size(), [=] __device__(std::size_t k) {
+      const BufferState s = b[k];
+      x[s.i] = s.x;
+      v[s.i] = s.v;
+      p[s.i] = s.p;
+      rho[s.i] = s.rho;
+    });
+  }
+
   void set_load_band(const std::vector<BandEntry>& band) override { band_.upload(band); }
 
   /// The constants of `scalars` with the device's arrays of the current stage.
@@ -543,9 +578,15 @@ class CudaBackend final : public DeviceBackend {
     const std::uint32_t* near_a = near_a_.data();
     const std::uint32_t* near_b = near_b_.data();
     const Vec2* normal = normal_.data();
-    const real range = d0_;
+    const Kind* kind = kind_.data();
+    const OpenZone* zones = zones_.data();
+    const std::size_t nz = zones_.size();
+    const real range = d0_, h = kernel_.h;
     each(nb_, n_, [=] __device__(std::size_t i) {
-      shift_particle(dir[i], scale, gradV[i], G[i], gather_surfaces(near_a[i], near_b[i], x, normal, v), range, domain,
+      if (kind[i] != Kind::Fluid) return;  // buffers move with their boundary
+      Vec2 d = dir[i];
+      limit_shift_at_open_lines(zones, nz, x[i], h, d);
+      shift_particle(d, scale, gradV[i], G[i], gather_surfaces(near_a[i], near_b[i], x, normal, v), range, domain,
                      c_sound, x[i], v[i], p[i], rho[i]);
     });
   }
@@ -558,7 +599,9 @@ class CudaBackend final : public DeviceBackend {
     Vec2* x = x_.data();
     Vec2* v = v_.data();
     unsigned long long* counters = counters_.data();
+    const Kind* kind = kind_.data();
     each(nb_, n_, [=] __device__(std::size_t i) {
+      if (kind[i] != Kind::Fluid) return;
       const GuardOutcome o = surface_guard_at(i, near_a, near_b, x, normal, v, keep, domain);
       if (o == GuardOutcome::Pushed) atomicAdd(&counters[kSurfacePushed], 1ull);
       if (o == GuardOutcome::Gap) atomicAdd(&counters[kGapSqueezed], 1ull);
@@ -674,6 +717,10 @@ class CudaBackend final : public DeviceBackend {
   DArray<Vec2> group_pos_, band_fp_, band_fv_;
   DArray<real> band_torque_, group_level_;
   DArray<GroupMotion> motions_;
+  // open boundaries: the lines, and the buffer particles' fields set on the host
+  DArray<OpenZone> zones_;
+  std::vector<BufferState> buffer_host_;
+  DArray<BufferState> buffer_;
 };
 
 }  // namespace

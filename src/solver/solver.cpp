@@ -30,10 +30,6 @@ Solver::Solver(PhysicsParams params, Domain domain, Particles particles, std::ve
       kernel_(params.h),
       t_(t0),
       steps_(step0) {
-  if (prm_.cuda && !prm_.open.empty())
-    throw std::runtime_error(
-        "open boundaries ([[inlet]], [[outlet]]) run on the CPU backend only for now: "
-        "use --backend cpu");
   real margin = 0;  // the buffers behind open boundaries lie outside the domain
   for (const OpenZone& z : prm_.open) margin = std::max(margin, z.depth);
   grid_.setup(domain_, prm_.h, margin);
@@ -295,8 +291,7 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   }
   PhaseTimer timer(times_.integration);
   guard_surfaces();
-  open_transfer();
-  remove_bodies_at_outlets();
+  open_end_of_step();
   return check_health();
 }
 

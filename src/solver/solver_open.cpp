@@ -114,6 +114,12 @@ void Solver::open_ghost_weights() {
   ghost_val_.clear();
   ghost_lin_.clear();
   if (prm_.open.empty()) return;
+  if (dev_) {
+    // The open-boundary passes run on the host (docs/method-notes.md, "Open boundaries"): the
+    // step's state, binned like the device's list (the same stable order by cell).
+    dev_->download(P_);
+    grid_.bin(P_.x);
+  }
   const std::size_t n = P_.size(), nb = P_.n_boundary;
   for (std::size_t i = nb; i < n; ++i)
     if (is_buffer(P_.kind[i])) {
@@ -148,7 +154,7 @@ void Solver::open_ghost_weights() {
           if (!(r2 < h2)) continue;
           js.push_back(j);
           d.push_back(rj / h);
-          w.push_back(vol_[j] * kernel_.W(std::sqrt(r2)));
+          w.push_back(P_.m[j] / P_.rho[j] * kernel_.W(std::sqrt(r2)));  // V_j = m_j / rho_j
         }
       real y0[3], y1[3];
       const Vec2 e = (P_.x[b] - xg) / h;
@@ -207,10 +213,12 @@ void Solver::open_velocities(real t_mid) {
       v += ghost_val_[q] * P_.v[ghost_j_[q]];
     P_.v[b] = v;
   }
+  if (dev_) dev_->set_buffer_particles(buffer_, P_);
 }
 
 void Solver::open_pressures() {
   PhaseTimer timer(times_.wall_pressure);
+  if (dev_ && !buffer_.empty()) dev_->download_pressures(P_.p);  // the fluid's stage pressures
   for (std::size_t k = 0; k < buffer_.size(); ++k) {
     if (buffer_zone_[k] < 0 || ghost_start_[k] == ghost_start_[k + 1]) continue;
     const std::size_t b = buffer_[k];
@@ -225,6 +233,7 @@ void Solver::open_pressures() {
     P_.p[b] = z.inlet ? p_lin : outlet_buffer_pressure(z.pressure, p_ghost);
     P_.rho[b] = density_from_pressure(P_.p[b], prm_.rho0, prm_.c, prm_.p0);
   }
+  if (dev_) dev_->set_buffer_particles(buffer_, P_);
 }
 
 void Solver::open_move(real dt) {
@@ -236,22 +245,32 @@ void Solver::open_move(real dt) {
     // crossing the line) its buffer follows it, and open_transfer refills the back.
     P_.x[b] += (dt * dot(P_.v[b], z.n)) * z.n;
   }
+  if (dev_) dev_->set_buffer_particles(buffer_, P_);
+}
+
+void Solver::open_end_of_step() {
+  if (prm_.open.empty()) return;
+  // On the GPU the transfer and a body's removal change the particle count: the host does them
+  // on the whole state and sends it back (one download and one upload a step).
+  if (dev_) dev_->download(P_);
+  open_transfer();
+  remove_bodies_at_outlets();
+  if (dev_) {
+    dev_->upload(P_);
+    host_current_ = true;
+    device_current_ = true;
+  }
 }
 
 void Solver::open_limit_shifting() {
   if (prm_.open.empty()) return;
   const std::size_t n = P_.size(), nb = P_.n_boundary;
+  const OpenZone* zones = prm_.open.data();
+  const std::size_t nz = prm_.open.size();
   const real h = prm_.h;
-  // A normal shift next to the regular buffer would open a void behind an inlet, and one across
-  // a line would move mass past it unaccounted; the tangential part still mixes the fluid.
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = nb; i < n; ++i) {
-    if (P_.kind[i] != Kind::Fluid) continue;
-    for (const OpenZone& z : prm_.open) {
-      const real xi = open_depth(z, P_.x[i]), s = open_along(z, P_.x[i]);
-      if (xi < h && s > -h && s < z.width + h) shift_dir_[i] -= dot(shift_dir_[i], z.n) * z.n;
-    }
-  }
+  for (std::size_t i = nb; i < n; ++i)
+    if (P_.kind[i] == Kind::Fluid) limit_shift_at_open_lines(zones, nz, P_.x[i], h, shift_dir_[i]);
 }
 
 void Solver::open_transfer() {

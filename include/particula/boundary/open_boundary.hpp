@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 
 #include "particula/core/types.hpp"
 
@@ -58,5 +59,19 @@ PARTICULA_HD real inlet_ramp(real t, real ramp_time) {
 /// exactly (the ghost-cell Dirichlet rule of finite volumes). A constant P_out in the buffer would
 /// put a kink into the pressure of a channel flow at the outlet.
 PARTICULA_HD real outlet_buffer_pressure(real p_out, real p_ghost) { return 2 * p_out - p_ghost; }
+
+/// Particle shifting next to open lines (P.33 limited): a fluid particle within h of a line (and
+/// within h of the segment's span) keeps only the tangential part of its shift direction. A
+/// normal shift next to the regular buffer would open a void behind an inlet, and one across a
+/// line would move mass past it unaccounted; the tangential part still mixes the fluid. Shared
+/// by the CPU loop and the CUDA kernel.
+PARTICULA_HD void limit_shift_at_open_lines(const OpenZone* zones, std::size_t count, Vec2 x, real h,
+                                            Vec2& shift_dir) {
+  for (std::size_t k = 0; k < count; ++k) {
+    const OpenZone& z = zones[k];
+    const real xi = open_depth(z, x), s = open_along(z, x);
+    if (xi < h && s > -h && s < z.width + h) shift_dir -= dot(shift_dir, z.n) * z.n;
+  }
+}
 
 }  // namespace particula

@@ -67,6 +67,11 @@ class DeviceBackend {
   virtual void group_loads(const std::vector<RigidGroup>& groups, real mu, std::vector<GroupLoads>& out) = 0;
   /// Positions of every particle (the band of the momentum loads is built from them once a step).
   virtual void download_positions(std::vector<Vec2>& x) = 0;
+  /// Pressures of every particle (the open-boundary fits read the fluid's stage pressures).
+  virtual void download_pressures(std::vector<real>& p) = 0;
+  /// Position, velocity, pressure and density of the particles `index` from P (the buffer
+  /// particles, whose fields the open-boundary passes set on the host).
+  virtual void set_buffer_particles(const std::vector<std::uint32_t>& index, const Particles& P) = 0;
   /// The band entries of this step (numerics.force = momentum).
   virtual void set_load_band(const std::vector<BandEntry>& band) = 0;
   /// band_entry_level of every entry (num, den in x, y) with the device's fields of the current

@@ -328,6 +328,9 @@ class Solver {
   void open_limit_shifting();
   /// Converts, deletes and creates particles at the open boundaries (end of step, index order).
   void open_transfer();
+  /// The step's last open-boundary work: open_transfer and remove_bodies_at_outlets (on the GPU
+  /// with the whole state on the host, sent back afterwards).
+  void open_end_of_step();
   /// The zone of a buffer particle of kind `k` at x: the zone of that kind whose line is nearest.
   int open_zone_of(Vec2 x, Kind k) const;
   /// Whether x lies beyond an open boundary's line, in its buffer.
