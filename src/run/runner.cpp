@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "outputs.hpp"
+#include "session.hpp"
 #include "particula/case/load.hpp"
 #include "particula/case/schema.hpp"
 #include "particula/io/atomic_file.hpp"
@@ -34,7 +35,10 @@ namespace particula {
 namespace {
 
 namespace fs = std::filesystem;
+using run_detail::RunEnd;
 using run_detail::RunOutputs;
+using run_detail::RunStats;
+using run_detail::Session;
 
 std::atomic<int> g_signal{0};
 extern "C" void on_signal(int sig) {
@@ -81,142 +85,6 @@ struct Reporter {
     std::fprintf(stderr, "%s\n", text.c_str());
   }
 };
-
-/// What the time loop measured: the summary's throughput and time-step range.
-struct RunStats {
-  std::chrono::steady_clock::time_point wall0 = std::chrono::steady_clock::now();
-  double particle_steps = 0, interactions = 0;
-  /// Range of the steps the stability limits chose (steps shortened to land on an output or end
-  /// time are left out: their size says nothing about the run); NaN before such a step.
-  real dt_min = std::numeric_limits<real>::quiet_NaN(), dt_max = std::numeric_limits<real>::quiet_NaN();
-
-  double wall_seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  }
-  /// Counts a step of `dt`, `capped` when it was shortened to land on a time.
-  void add_step(real dt, bool capped, std::size_t particles, std::size_t pairs) {
-    particle_steps += static_cast<double>(particles);
-    interactions += static_cast<double>(pairs);
-    if (capped) return;
-    dt_min = std::isnan(dt_min) ? dt : std::min(dt_min, dt);
-    dt_max = std::isnan(dt_max) ? dt : std::max(dt_max, dt);
-  }
-};
-
-/// What `run` and `resume` set up for the shared loop.
-struct Session {
-  Case c;
-  std::uint64_t case_hash = 0;  // the run's case identity (marker and every checkpoint)
-  fs::path dir;
-  RunDirectory* run_dir = nullptr;  // `run`: the new run directory, committed once the run has started
-  std::unique_ptr<Solver> solver;
-  std::unique_ptr<RunOutputs> outputs;
-  std::size_t n_fluid = 0;
-  bool resumed = false;
-  real t_start = 0;
-  std::vector<std::string> overrides;  // the --set list of this command
-  RunStats stats;
-};
-
-/// How a run ended, for summary.json: status, exit code and, for exit 3, the failure.
-struct RunEnd {
-  std::string status;  // completed, max_steps, interrupted, failed, io_failure
-  int exit_code = 0;
-  std::optional<Failure> failure;
-  std::string error;  // io_failure: the message
-};
-
-/// The failure of a run as structured fields: reason, time, step, particle (null when the
-/// failure is not a particle's) and position.
-io::JsonObject failure_json(const Failure& f, real t, std::int64_t step) {
-  io::JsonObject j;
-  j.set("reason", f.what);
-  j.set("time", t);
-  j.set("step", step);
-  if (f.particle_id >= 0)
-    j.set("particle", f.particle_id);
-  else
-    j.set("particle", io::JsonRaw{"null"});
-  j.set("position", std::vector<double>{f.position.x, f.position.y});
-  return j;
-}
-
-/// The text of choice key `key` ("body[].shape") of element `index` of the case.
-std::string choice_text(const Case& c, const char* key, std::size_t index) {
-  const KeySpec* spec = find_key(key);
-  const std::optional<Value> v = spec ? spec->bind.get(c, index) : std::nullopt;
-  const auto* text = v ? std::get_if<std::string>(&*v) : nullptr;
-  return text ? *text : "";
-}
-
-/// The legend of the body and wall numbers of bodies.csv, walls.csv and the snapshots' `body`
-/// and `wall` arrays: index (case order), name, and for bodies shape and motion.
-void add_legend(io::JsonObject& summary, const Case& c) {
-  std::vector<io::JsonObject> bodies, walls;
-  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
-    io::JsonObject b;
-    b.set("index", k).set("name", c.bodies[k].name);
-    b.set("shape", choice_text(c, "body[].shape", k)).set("motion", choice_text(c, "body[].motion", k));
-    bodies.push_back(std::move(b));
-  }
-  for (std::size_t k = 0; k < c.walls.size(); ++k)
-    walls.push_back(io::JsonObject().set("index", k).set("name", c.walls[k].name));
-  summary.set("bodies", bodies);
-  summary.set("walls", walls);
-}
-
-/// summary.json: what made the run (version, commit, backend, threads, overrides), its
-/// resolution and time-step range, how it ended, its cost, the guard counters and profile errors.
-io::JsonObject run_summary(const Session& s, const RunEnd& end, std::optional<double> profile_error) {
-  const Solver& solver = *s.solver;
-  const RunStats& st = s.stats;
-  const double wall = st.wall_seconds();
-  io::JsonObject summary;
-  summary.set("case", s.c.name);
-  summary.set("status", end.status);
-  summary.set("exit_code", end.exit_code);
-  if (end.failure) summary.set("failure", failure_json(*end.failure, solver.time(), solver.step_count()));
-  if (!end.error.empty()) summary.set("error", end.error);
-  summary.set("version", version());
-  summary.set("commit", git_commit());
-  summary.set("particles", static_cast<std::int64_t>(solver.particle_count()));
-  summary.set("backend", std::string(solver.backend_name()));
-  summary.set("fluid_particles", static_cast<std::int64_t>(s.n_fluid));
-  summary.set("d0", s.c.d0);
-  summary.set("h", solver.params().h);
-  summary.set("steps", solver.step_count());
-  summary.set("end_time", solver.time());
-  if (s.resumed) summary.set("resumed_from", s.t_start);
-  summary.set("dt_min", st.dt_min);
-  summary.set("dt_max", st.dt_max);
-  summary.set("overrides", s.overrides);
-  add_legend(summary, s.c);
-  summary.set("wall_seconds", wall);
-  summary.set("threads", static_cast<std::int64_t>(omp_get_max_threads()));
-  summary.set("particle_steps_per_second", wall > 0 ? st.particle_steps / wall : 0.0);
-  summary.set("interactions_per_second", wall > 0 ? st.interactions / wall : 0.0);
-  io::JsonObject guards;
-  for (const auto& [name, count] : guard_events(solver.counters())) guards.set(name, count);
-  summary.set("guard_events", guards);
-  if (!solver.open_flux().empty()) {
-    summary.set("open_boundaries", open_boundary_summary(solver));
-    std::vector<io::JsonObject> removed;
-    for (const RigidGroup& g : solver.groups())
-      if (g.removed)
-        removed.push_back(
-            io::JsonObject()
-                .set("index", static_cast<std::int64_t>(g.body))
-                .set("name", g.name)
-                .set("time", g.removed_time)
-                .set("outlet", solver.params().open_specs[static_cast<std::size_t>(g.removed_at)].name));
-    summary.set("bodies_removed", removed);
-    summary.set("fluid_mass", fluid_mass(solver.particles()));
-  }
-  for (const auto& p : s.outputs->probes())
-    if (auto e = p->last_error()) summary.set("probe_error_" + p->spec().name, *e);
-  if (profile_error) summary.set("profile_error", *profile_error);
-  return summary;
-}
 
 void save_checkpoint(const fs::path& file, const Session& s) {
   const Solver& solver = *s.solver;
