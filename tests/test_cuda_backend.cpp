@@ -79,60 +79,54 @@ Difference compare(const Case& c, int steps) {
 
 bool have_gpu(std::string& why) { return cuda_backend_available(&why); }
 
+/// A case, its overrides and how many steps to compare.
+struct CaseRun {
+  const char* name;
+  std::vector<std::string> overrides;
+  int steps;
+};
+
+/// Runs each case on the CPU and the GPU and requires body and fluid velocities to agree to
+/// 1e-9; with `creates`, also that the CPU run created particles at its open boundaries.
+void expect_cases_agree(const std::vector<CaseRun>& cases, bool creates) {
+  for (const CaseRun& k : cases) {
+    const Difference d = compare(load(k.name, k.overrides), k.steps);
+    std::printf("%s, %d steps: %lld particles created, body velocity rel. difference %.3g, fluid velocity %.3g\n",
+                k.name, k.steps, static_cast<long long>(d.created), d.body_velocity, d.fluid_velocity);
+    if (creates) {
+      EXPECT_GT(d.created, 0) << k.name << ": the transfer must have run";
+    }
+    EXPECT_LT(d.body_velocity, 1e-9) << k.name;
+    EXPECT_LT(d.fluid_velocity, 1e-9) << k.name;
+  }
+}
+
 TEST(CudaBackend, FallingCylinderAgreesWithCpuAfter100Steps) {
   std::string why;
   if (!have_gpu(why)) GTEST_SKIP() << "no CUDA backend here: " << why;
-  const Difference d = compare(load("falling_cylinder", {"resolution.d0=2.5e-4"}), 100);
-  std::printf("falling cylinder, 100 steps: body velocity rel. difference %.3g, fluid velocity %.3g\n",
-              d.body_velocity, d.fluid_velocity);
-  EXPECT_LT(d.body_velocity, 1e-9);
-  EXPECT_LT(d.fluid_velocity, 1e-9);
+  expect_cases_agree({{"falling_cylinder", {"resolution.d0=2.5e-4"}, 100}}, false);
 }
 
 TEST(CudaBackend, CollidingBodiesPeriodicShearAndDummyWallsAgreeWithCpu) {
   std::string why;
   if (!have_gpu(why)) GTEST_SKIP() << "no CUDA backend here: " << why;
-  const struct {
-    const char* name;
-    std::vector<std::string> overrides;
-  } cases[] = {
-      {"dkt", {"resolution.d0=2e-4"}},
-      {"two_cylinders_shear", {}},
-      {"falling_cylinder", {"resolution.d0=2.5e-4", "numerics.boundary=dummy"}},
-      {"couette", {}},
-  };
-  for (const auto& k : cases) {
-    const Difference d = compare(load(k.name, k.overrides), 60);
-    std::printf("%s: body velocity rel. difference %.3g, fluid velocity %.3g\n", k.name, d.body_velocity,
-                d.fluid_velocity);
-    EXPECT_LT(d.body_velocity, 1e-9) << k.name;
-    EXPECT_LT(d.fluid_velocity, 1e-9) << k.name;
-  }
+  expect_cases_agree({{"dkt", {"resolution.d0=2e-4"}, 60},
+                      {"two_cylinders_shear", {}, 60},
+                      {"falling_cylinder", {"resolution.d0=2.5e-4", "numerics.boundary=dummy"}, 60},
+                      {"couette", {}, 60}},
+                     false);
 }
 
 TEST(CudaBackend, OpenBoundariesAgreeWithCpu) {
   // The open-boundary passes run on the host between the device's passes (fits, buffer fields,
-  // transfer): the same particles must be created and deleted, with the same fields.
+  // transfer): the same particles must be created and deleted, with the same fields. Steps
+  // enough for each to create particles (on the CPU: 4, 56 and 44).
   std::string why;
   if (!have_gpu(why)) GTEST_SKIP() << "no CUDA backend here: " << why;
-  // Steps enough for each to create particles (on the CPU: 4, 56 and 44).
-  const struct {
-    const char* name;
-    std::vector<std::string> overrides;
-    int steps;
-  } cases[] = {
-      {"poiseuille_open", {"resolution.d0=1e-4", "inlet.0.ramp_time=0"}, 400},
-      {"dfg_2d1", {"resolution.d0=0.01", "inlet.0.ramp_time=0.01"}, 150},
-      {"particle_channel", {"outlet.0.bodies=removed", "inlet.0.ramp_time=0"}, 400},
-  };
-  for (const auto& k : cases) {
-    const Difference d = compare(load(k.name, k.overrides), k.steps);
-    std::printf("%s: %lld particles created, body velocity rel. difference %.3g, fluid velocity %.3g\n", k.name,
-                static_cast<long long>(d.created), d.body_velocity, d.fluid_velocity);
-    EXPECT_GT(d.created, 0) << k.name << ": the transfer must have run";
-    EXPECT_LT(d.body_velocity, 1e-9) << k.name;
-    EXPECT_LT(d.fluid_velocity, 1e-9) << k.name;
-  }
+  expect_cases_agree({{"poiseuille_open", {"resolution.d0=1e-4", "inlet.0.ramp_time=0"}, 400},
+                      {"dfg_2d1", {"resolution.d0=0.01", "inlet.0.ramp_time=0.01"}, 150},
+                      {"particle_channel", {"outlet.0.bodies=removed", "inlet.0.ramp_time=0"}, 400}},
+                     true);
 }
 
 TEST(CudaBackend, WithoutAGpuTheBackendIsRefusedWithAReason) {
