@@ -123,6 +123,9 @@ TEST(Cli, NumericalFailureIsExitThreeWithFinalSnapshot) {
   EXPECT_EQ(r.code, 3) << r.output;
   EXPECT_NE(r.output.find("numerical failure at t ="), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("particle"), std::string::npos) << r.output;
+  // the message names the cause with its numbers: g H / c^2 = 9.81 x 0.1 / 0.05^2 = 392
+  EXPECT_NE(r.output.find("gravity compresses the fluid by g H / c^2 = 3.9e+02"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("fluid.c of at least 9.9 m/s"), std::string::npos) << r.output;
   const std::string summary = read(out / "summary.json");
   EXPECT_NE(summary.find("\"status\": \"failed\""), std::string::npos) << summary;
   int snapshots = 0;

@@ -410,7 +410,36 @@ std::string Solver::likely_cause(Vec2 x) const {
         "for this resolution (Mach number V/fluid.c above about 0.1, or too few particles across a "
         "body or a gap: lower resolution.d0 or raise fluid.c)",
         where.c_str(), d);
-  return buf;
+  return buf + weak_compressibility_report(x);
+}
+
+std::string Solver::weak_compressibility_report(Vec2 failed_at) const {
+  // The weakly compressible model holds while density varies by about 1 %: flow speeds below
+  // c / 10 (rho varies as Ma^2) and, with gravity in the fluid, a hydrostatic head g H below
+  // c^2 / 100 (rho0 g H / (rho0 c^2) is its relative density change). The fluid within 3 h of
+  // the failed particle is left out: it moves with the blow-up, not with the flow.
+  real vmax = 0;
+  const real near2 = 9 * prm_.h * prm_.h;
+  for (std::size_t k = P_.n_boundary; k < P_.size(); ++k)
+    if (P_.is_fluid(k) && !(norm2(domain_.separation(P_.x[k], failed_at)) < near2))
+      vmax = std::max(vmax, norm(P_.v[k]));
+  std::string out;
+  const real mach = vmax / prm_.c;
+  if (std::isfinite(mach) && mach > 0.1)
+    out += fmt::format("; the fastest fluid particle (beyond 3 h of this one) moves at {:.3g} m/s, Mach {:.3g} "
+                       "(keep it below 0.1: fluid.c of at least {:.3g} m/s)",
+                       vmax, mach, 10 * vmax);
+  const real g = norm(prm_.gravity);
+  if (prm_.gravity_in_fluid && g > 0) {
+    const Vec2 size = domain_.size();  // g H: |g| times the domain's extent along g (a box's diagonal reach)
+    const real head = std::fabs(prm_.gravity.x) * size.x + std::fabs(prm_.gravity.y) * size.y;
+    const real squeeze = head / (prm_.c * prm_.c);
+    if (squeeze > 0.01)
+      out += fmt::format("; gravity compresses the fluid by g H / c^2 = {:.2g} over the domain's height (keep it "
+                         "below 0.01: fluid.c of at least {:.3g} m/s)",
+                         squeeze, 10 * std::sqrt(head));
+  }
+  return out;
 }
 
 }  // namespace particula

@@ -363,6 +363,9 @@ class Solver {
   void remove_body(std::size_t k, std::size_t z);
   /// What a failure at fluid position x most likely comes from, for the exit-3 message.
   std::string likely_cause(Vec2 x) const;
+  /// The flow's Mach number (away from a failure at `failed_at`) and hydrostatic compression where
+  /// they exceed the weakly compressible model's range (for the exit-3 message), or "".
+  std::string weak_compressibility_report(Vec2 failed_at) const;
   real max_speed() const;
   /// A failure when the stable time step `dt` has fallen below kTimeStepCollapse of the case's
   /// own step (P.30-P.31 at d0 and c): a run that would crawl for ever is stopped with exit 3,
