@@ -18,8 +18,6 @@
 namespace particula::case_detail {
 namespace {
 
-std::string vec(Vec2 v) { return format_toml_value(Value{v}); }
-
 /// One closed loop of a polygon body as the case file gives it: the outline (`vertices`) or a
 /// hole (`holes[h]`), with the words that name it and its points in messages.
 struct Loop {

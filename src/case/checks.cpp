@@ -24,8 +24,6 @@
 namespace particula::case_detail {
 namespace {
 
-std::string vec(Vec2 v) { return format_toml_value(Value{v}); }
-
 /// domain.max must exceed domain.min in both components.
 void check_domain(const Case& c, const LoadContext& ctx) {
   if (c.domain_max.x > c.domain_min.x && c.domain_max.y > c.domain_min.y) return;
@@ -118,8 +116,6 @@ Vec2 left_normal(const WallSpec& w) {
   const Vec2 t = unit(w.to - w.from);
   return {-t.y, t.x};
 }
-
-real component(Vec2 v, int axis) { return axis == 0 ? v.x : v.y; }
 
 /// b - a, to the nearest periodic image along periodic axes (as Domain::separation, which the
 /// scene uses to decide whether two wall ends are one point).

@@ -112,8 +112,6 @@ namespace case_detail {
 
 namespace {
 
-std::string vec(Vec2 v) { return format_toml_value(Value{v}); }
-
 /// A count for messages: "2.5e+03", or "more than 1e308" when it overflowed.
 std::string count(double n) { return std::isfinite(n) ? fmt::format("{:.3g}", n) : "more than 1e308"; }
 

@@ -114,4 +114,10 @@ void check_open_bodies(const Case& c, const LoadContext& ctx);
 /// Consistency checks between keys (domain, walls, periodic width, bodies, ...); throw CaseError.
 void run_cross_checks(const Case& c, const LoadContext& ctx);
 
+/// A point or vector as the case file writes it, e.g. [0.1, 0.2] (for the checks' messages).
+inline std::string vec(Vec2 v) { return format_toml_value(Value{v}); }
+
+/// Component `axis` (0: x, 1: y) of v.
+inline real component(Vec2 v, int axis) { return axis == 0 ? v.x : v.y; }
+
 }  // namespace particula::case_detail

@@ -22,8 +22,6 @@
 namespace particula::case_detail {
 namespace {
 
-std::string vec(Vec2 v) { return format_toml_value(Value{v}); }
-
 /// One open boundary with where it comes from in the case file.
 struct Open {
   const OpenSpec* spec;
@@ -46,8 +44,6 @@ std::vector<Open> open_list(const Case& c) {
 
 /// The depth L_b = layers d0 of the buffer behind `o`.
 real buffer_depth(const Case& c, const OpenSpec& o) { return c.open_layers(o) * c.d0; }
-
-real component(Vec2 v, int axis) { return axis == 0 ? v.x : v.y; }
 
 /// An edge line of the domain box: x = value (axis 0) or y = value (axis 1).
 struct Edge {

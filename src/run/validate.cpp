@@ -43,8 +43,6 @@ double peak_fluid_speed(const io::VtpData& vtp) {
 
 // ---- body histories (bodies.csv) and reference curves -----------------------------------------
 
-const fs::path kSource = PARTICULA_SOURCE_DIR;
-
 /// One body's rows of bodies.csv.
 struct BodyHistory {
   std::vector<double> t, x, y, angle, vx, vy, omega;
@@ -78,7 +76,7 @@ struct Curve {
 };
 
 Curve reference_curve(const std::string& file, const std::string& column, int body = -1) {
-  const io::CsvTable table = io::read_csv(kSource / "reference" / file);
+  const io::CsvTable table = io::read_csv(source_dir() / "reference" / file);
   const std::size_t it = table.column_index("t"), iv = table.column_index(column);
   Curve c;
   for (const auto& r : table.rows) {
@@ -131,7 +129,7 @@ ValidationCheck worst_deviation_check(std::string quantity, const WorstDeviation
 /// Whether the run was at most as coarse as the shipped (paper) level of its case file.
 bool at_paper_level(const Case& c) {
   try {
-    return c.d0 <= load_case(kSource / "cases" / (c.name + ".toml")).d0 * (1 + 1e-9);
+    return c.d0 <= load_case(source_dir() / "cases" / (c.name + ".toml")).d0 * (1 + 1e-9);
   } catch (const std::exception&) {
     return false;
   }

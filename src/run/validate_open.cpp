@@ -19,8 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kSource = PARTICULA_SOURCE_DIR;
-
 /// The rows of `table` at its last time.
 std::vector<std::vector<double>> rows_at_last_time(const io::CsvTable& table) {
   const std::size_t it = table.column_index("time");
@@ -81,7 +79,7 @@ ValidationCheck mass_balance_check(const fs::path& run_dir, const Case& c) {
 
 /// A published range of reference/schaefer_turek1996_dfg.csv: (lower, upper).
 std::pair<double, double> dfg_range(const std::string& test, const std::string& quantity) {
-  const fs::path file = kSource / "reference" / "schaefer_turek1996_dfg.csv";
+  const fs::path file = source_dir() / "reference" / "schaefer_turek1996_dfg.csv";
   // The file has text columns (case, quantity, unit): read it by hand.
   std::ifstream in(file);
   std::string line;

@@ -24,11 +24,10 @@ namespace particula {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-const fs::path kSource = PARTICULA_SOURCE_DIR;  // the case files of the entries
-
-}  // namespace
+const fs::path& source_dir() {
+  static const fs::path dir = PARTICULA_SOURCE_DIR;  // compiled in (CMakeLists.txt)
+  return dir;
+}
 
 const char* group_name(ValidationGroup g) {
   switch (g) {
@@ -208,7 +207,7 @@ EntryResult run_entry(const ValidationEntry& entry, const ValidateOptions& opt) 
   run.overwrite = true;
   run.quiet = true;
   run.threads = opt.threads;
-  const fs::path case_file = kSource / entry.case_file;
+  const fs::path case_file = source_dir() / entry.case_file;
   try {
     run.overrides = level_overrides(entry, case_file, opt.quick, r.d0);
     run.overrides.insert(run.overrides.end(), opt.sets.begin(), opt.sets.end());

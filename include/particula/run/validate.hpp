@@ -142,4 +142,7 @@ bool entry_selected(const ValidationEntry& entry, const ValidateOptions& options
 /// what it wrote, but the case fails.
 int validate_command(const ValidateOptions& options);
 
+/// The source tree the suite reads its case files and references from (cases/, reference/).
+const std::filesystem::path& source_dir();
+
 }  // namespace particula
