@@ -20,9 +20,11 @@ struct Setup {
 };
 
 /// A 1 x 0.8 box at d0 = 0.04 with a 20 % random perturbation of the fluid lattice.
-Setup make_box(bool fatehi_manzari = true, real perturbation = 0.2) {
+Setup make_box(bool fatehi_manzari = true, real perturbation = 0.2,
+               GradientScheme gradient = GradientScheme::Consistent) {
   Case c = cases::closed_box(1.0, 0.8, 0.04);
   c.perturbation = perturbation;
+  c.gradient = gradient;
   c.seed = 7;
   c.laplacian = fatehi_manzari ? LaplacianScheme::FatehiManzari : LaplacianScheme::Morris;
   Setup s{build_scene(c), nullptr};
@@ -54,8 +56,12 @@ bool near_corner(const Solver& s, std::size_t i) {
 
 }  // namespace
 
-TEST(Operators, GradientOfLinearFieldIsExact) {
-  auto s = make_box();
+class GradientSchemes : public ::testing::TestWithParam<GradientScheme> {};
+INSTANTIATE_TEST_SUITE_P(Operators, GradientSchemes,
+                         ::testing::Values(GradientScheme::Consistent, GradientScheme::Paper));
+
+TEST_P(GradientSchemes, GradientOfLinearFieldIsExact) {
+  auto s = make_box(true, 0.2, GetParam());
   Solver& sv = *s.solver;
   // A random linear vector field V = A x + b, and a linear pressure.
   const Mat2 A{0.37, -1.21, 0.83, 0.52};
@@ -86,6 +92,42 @@ TEST(Operators, GradientOfLinearFieldIsExact) {
   EXPECT_GT(counted[1], 50);
   EXPECT_GT(counted[2], 50);
   EXPECT_EQ(sv.counters().singular_B, 0);
+}
+
+// A particle's own pressure must not enter its own gradient: with the paper's weights (P.7) it
+// enters as -P_i B sum_j w_j gradW_ij, which on an irregular distribution or beside a
+// single-layer wall is of order P_i / h and, paired with the same term of the divergence, makes
+// a mode that grows at the rate c |B sum_j w_j gradW_ij| (docs/method-notes.md, "The self-coupled
+// mode"). A unit pressure on particles more than h apart, zero elsewhere: each one's gradient is
+// its own term only.
+TEST(Operators, ConsistentGradientLeavesOutAParticlesOwnPressure) {
+  real largest[2] = {0, 0};
+  int scheme = 0;
+  for (GradientScheme g : {GradientScheme::Consistent, GradientScheme::Paper}) {
+    auto s = make_box(true, 0.2, g);
+    Solver& sv = *s.solver;
+    const auto& P = sv.particles();
+    const real h = sv.params().h;
+    std::vector<real> p(P.size(), 0.0), rho(P.size(), 1.0);
+    std::vector<std::size_t> picked;
+    for (std::size_t i = P.n_boundary; i < P.size(); ++i) {
+      bool apart = true;
+      for (std::size_t k : picked) apart = apart && norm(P.x[i] - P.x[k]) > 1.01 * h;
+      if (apart) picked.push_back(i);
+    }
+    for (std::size_t i : picked) p[i] = 1.0;
+    sv.compute_pressure_gradient(p, rho);
+    int near_wall = 0;
+    for (std::size_t i : picked) {
+      largest[scheme] = std::max(largest[scheme], norm(sv.grad_p_over_rho()[i]) * h);
+      near_wall += where(sv, i) == Where::NearWall ? 1 : 0;
+    }
+    EXPECT_GT(picked.size(), 40U);
+    EXPECT_GT(near_wall, 15);
+    ++scheme;
+  }
+  EXPECT_LT(largest[0], 1e-10);  // consistent: the weights of every particle sum to zero
+  EXPECT_GT(largest[1], 0.3);    // paper: an own term of order P_i / h
 }
 
 TEST(Operators, FatehiManzariLaplacianOfQuadraticIsExact) {

@@ -145,10 +145,10 @@ TEST_P(RobustnessCases, CoarseLevelFinishesAndPassesItsChecks) {
 /// `--gtest_also_run_disabled_tests` and in `particula validate --group robustness`; CI runs the
 /// others. Remove a name here when its case passes. A value above 0 is a short version as for
 /// kLong below: the case up to that time, before its failure, must end with exit 0.
-/// drop_rebound (session 21): with output rows every 1e-5 s, which its rebound check needs, the
-/// coarse level stops at t = 9.2 ms, after the rebound (a fluid particle shot out of the opening
-/// gap under the cylinder); the short version covers the impact and the rebound (6-6.5 ms).
-const std::map<std::string, double> kOpenFailures = {{"rotating_drum", 0}, {"drop_rebound", 0.008}};
+/// drop_rebound was listed from session 21 (exit 3 at t = 9.2 ms, after the rebound) to session 23,
+/// when the zeroth-order correction of the first derivatives (docs/method-notes.md, "The
+/// self-coupled mode") let it finish and pass; it runs in CI in full again.
+const std::map<std::string, double> kOpenFailures = {{"rotating_drum", 0}};
 
 /// Cases too long for CI (minutes each on two cores), run in full (with their checks) by
 /// `particula validate --group robustness`: the bodies need most of their end time to come to rest

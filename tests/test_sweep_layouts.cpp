@@ -72,7 +72,7 @@ EllList gpu_style_list(const std::vector<Vec2>& x, const GridGeometry& grid, rea
 struct Fields {
   std::vector<Vec2> grad_w;
   std::vector<real> lap_w;
-  std::vector<Vec2> lap_esum, G, lapV, v_new;
+  std::vector<Vec2> G, lapV, v_new;
   std::vector<Mat2> gradV;
   std::vector<real> div_v, rc, rho, p, p_wall;
   std::vector<GeometryAt> geo;
@@ -87,15 +87,12 @@ Fields run_sweeps(SweepContext c, std::size_t slots, const Particles& P, const s
   Fields f;
   f.grad_w.assign(slots, Vec2{});
   f.lap_w.assign(slots, 0);
-  f.lap_esum.resize(n);
   f.geo.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     f.geo[i] = geometry_at(c, i, d0, f.grad_w.data(), f.lap_w.data());
-    f.lap_esum[i] = f.geo[i].lap_esum;
   }
   c.grad_w = f.grad_w.data();
   c.lap_w = f.lap_w.data();
-  c.lap_esum = f.lap_esum.data();
   f.gradV.resize(n);
   f.lapV.resize(n);
   f.div_v.resize(n);

@@ -99,6 +99,15 @@ std::vector<KeySpec> make_schema() {
           "sums the surface traction over the surface particles (P.26-P.27) with the lattice masses of "
           "the paper's fill, to reproduce its results (docs/method-notes.md, \"Forces on solids\").",
           &Case::force),
+      choice_key(
+          "numerics.gradient", {"consistent", "paper"}, def(std::string{"consistent"}),
+          "First derivatives at fluid particles (pressure gradient, velocity gradient and divergence): "
+          "`consistent` corrects the kernel gradient so that a particle's weights sum to zero and then "
+          "renormalizes it (exact for constant and linear fields on any particle distribution); `paper` "
+          "renormalizes only (P.7), which on an irregular distribution couples a particle's own pressure "
+          "and velocity into a mode that grows at the rate c |sum_j w_j B gradW_ij| and ended runs with "
+          "fluid at twice rho0 (docs/method-notes.md, \"The self-coupled mode\").",
+          &Case::gradient),
       real_key("numerics.rhie_chow_factor", "-", def(1.0), closed(0, 10),
                "Scale of the Rhie-Chow pressure stabilisation in the continuity equation.",
                field(&Case::rhie_chow_factor)),

@@ -151,7 +151,7 @@ class CudaBackend final : public DeviceBackend {
  public:
   CudaBackend(const PhysicsParams& prm, const GridGeometry& grid, const WendlandC2& kernel, const Particles& P)
       : grid_(grid), kernel_(kernel), d0_(prm.d0), film_gap_(prm.film_gap * prm.d0), kernel_normals_(prm.kernel_normals),
-        fatehi_manzari_(prm.fatehi_manzari), single_layer_(prm.single_layer) {
+        fatehi_manzari_(prm.fatehi_manzari), zeroth_order_gradient_(prm.zeroth_order_gradient), single_layer_(prm.single_layer) {
     counters_.resize(kCounters);
     zero_counters();
     zones_.upload(prm.open);  // the open lines, for the shifting limit next to them
@@ -178,7 +178,7 @@ class CudaBackend final : public DeviceBackend {
     normal_.upload(P.normal);
     source_.upload(P.source);
     for (auto* a : {&rho_n_, &rho_s_, &p_n_, &vol_, &rc_, &div_v_, &scratch_real_}) a->resize(n_);
-    for (auto* a : {&v_n_, &v_s_, &lapV_, &G_, &shift_dir_, &lap_esum_}) a->resize(n_);
+    for (auto* a : {&v_n_, &v_s_, &lapV_, &G_, &shift_dir_}) a->resize(n_);
     for (auto* a : {&gradV_, &gradV_n_}) a->resize(n_);
     for (auto* a : {&near_a_, &near_b_}) a->resize(n_);
     film_.resize(n_);
@@ -287,7 +287,6 @@ class CudaBackend final : public DeviceBackend {
     Vec2* grad_w = grad_w_.data();
     real* lap_w = lap_w_.data();
     Vec2* shift_dir = shift_dir_.data();
-    Vec2* lap_esum = lap_esum_.data();
     std::uint32_t* near_a = near_a_.data();
     std::uint32_t* near_b = near_b_.data();
     Vec2* normal = normal_.data();
@@ -300,7 +299,6 @@ class CudaBackend final : public DeviceBackend {
       isolated_out[i] = i >= nb && kind[i] == Kind::Fluid && isolated(g.others_fluid_support, one_neighbour, g.near.a) ? 1 : 0;
       if (isolated_out[i]) atomicAdd(&counters[kIsolatedLeftOut], 1ull);
       shift_dir[i] = g.shift_direction;
-      lap_esum[i] = g.lap_esum;
       near_a[i] = g.near.a;
       near_b[i] = g.near.b;
       // dummies, and buffer particles whose support is one-sided by design, are not events
@@ -649,9 +647,9 @@ class CudaBackend final : public DeviceBackend {
     c.film = film_.data();
     c.isolated = isolated_.data();
     c.fatehi_manzari = fatehi_manzari_;
+    c.zeroth_order_gradient = zeroth_order_gradient_;
     c.grad_w = grad_w_.data();
     c.lap_w = lap_w_.data();
-    c.lap_esum = lap_esum_.data();
     return c;
   }
 
@@ -688,7 +686,7 @@ class CudaBackend final : public DeviceBackend {
   GridGeometry grid_;
   WendlandC2 kernel_;
   real d0_, film_gap_;
-  bool kernel_normals_, fatehi_manzari_, single_layer_;
+  bool kernel_normals_, fatehi_manzari_, zeroth_order_gradient_, single_layer_;
   std::size_t n_ = 0, nb_ = 0, pairs_ = 0;
   real min_distance_ = 0;
 
@@ -700,7 +698,7 @@ class CudaBackend final : public DeviceBackend {
   DArray<std::int64_t> id_;
   // work arrays
   DArray<real> rho_n_, rho_s_, p_n_, vol_, rc_, div_v_, p_new_, scratch_real_;
-  DArray<Vec2> v_n_, v_s_, lapV_, G_, shift_dir_, lap_esum_, grad_w_;
+  DArray<Vec2> v_n_, v_s_, lapV_, G_, shift_dir_, grad_w_;
   DArray<Mat2> gradV_, gradV_n_;
   DArray<real> lap_w_, film_;
   DArray<std::uint8_t> isolated_;

@@ -86,6 +86,7 @@ PhysicsParams physics_params(const Case& c) {
   p.cfl = c.cfl;
   p.dt_max = c.dt_max;
   p.fatehi_manzari = c.laplacian == LaplacianScheme::FatehiManzari;
+  p.zeroth_order_gradient = c.gradient == GradientScheme::Consistent;
   p.single_layer = c.boundary == BoundaryModel::SingleLayer;
   p.kernel_normals = c.normals == NormalModel::Kernel;
   p.momentum_force = c.force == ForceModel::Momentum;

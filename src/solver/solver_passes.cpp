@@ -44,9 +44,9 @@ SweepContext Solver::sweep_context() const {
   c.film = film_.empty() ? nullptr : film_.data();
   c.isolated = isolated_.empty() ? nullptr : isolated_.data();
   c.fatehi_manzari = prm_.fatehi_manzari;
+  c.zeroth_order_gradient = prm_.zeroth_order_gradient;
   c.grad_w = pair_grad_w_.data();
   c.lap_w = pair_lap_w_.data();
-  c.lap_esum = lap_esum_.data();
   return c;
 }
 
@@ -70,7 +70,6 @@ void Solver::geometry_sweep() {
   Bhat_.resize(n);
   rbar_.resize(n);
   shift_dir_.resize(n);
-  lap_esum_.resize(n);
   near_a_.resize(n);
   near_b_.resize(n);
   isolated_.resize(n);
@@ -92,7 +91,6 @@ void Solver::geometry_sweep() {
     Bhat_[i] = g.Bhat;
     rbar_[i] = g.rbar;
     shift_dir_[i] = g.shift_direction;
-    lap_esum_[i] = g.lap_esum;
     near_a_[i] = g.near.a;
     near_b_[i] = g.near.b;
     // dummies, and buffer particles whose support is one-sided by design, are not events

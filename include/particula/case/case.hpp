@@ -22,6 +22,10 @@ enum class NormalModel { Kernel, Analytic };
 /// lattice masses of the paper's fill, or the momentum balance of the fluid in a band around each
 /// solid, with fluid masses that fill the region outside the bodies exactly.
 enum class ForceModel { Paper, Momentum };
+/// The first-derivative weights of fluid particles (docs/method-notes.md, "The self-coupled
+/// mode"): the paper's renormalization (P.7), exact for linear fields, or the same with the kernel
+/// gradient also corrected to zeroth order (the weights of a particle sum to zero).
+enum class GradientScheme { Consistent, Paper };
 enum class InitialFlow { Rest, TaylorGreen, Couette };
 /// Exact solution a case is compared with (probes get a vx_exact column, summary.json the error).
 enum class ExactSolution { None, Couette, Poiseuille, SpinUp };
@@ -181,6 +185,7 @@ struct Case {
   BoundaryModel boundary = BoundaryModel::SingleLayer;
   NormalModel normals = NormalModel::Analytic;  // P.18 is selectable; see docs/method-notes.md
   ForceModel force = ForceModel::Momentum;
+  GradientScheme gradient = GradientScheme::Consistent;
   real rhie_chow_factor = 1;
   real shifting_beta = 0.05;
   real odd_even_damping = 0.005;

@@ -57,6 +57,7 @@ struct PhysicsParams {
   real cfl = 0.5;
   real dt_max = 0;
   bool fatehi_manzari = true;   // false: Morris Laplacian (baseline)
+  bool zeroth_order_gradient = true;  // numerics.gradient = "consistent" (sweeps.hpp, geometry_at)
   bool single_layer = true;     // false: dummy-particle boundary (baseline)
   bool kernel_normals = true;   // false: analytic normals
   bool momentum_force = false;  // loads from the fluid's momentum balance (true) or P.26-P.27 (false)
@@ -396,7 +397,7 @@ class Solver {
   std::vector<Vec2> group_v0_;
   std::vector<real> group_w0_;
   std::vector<Mat2> B_, Bhat_, gradV_, gradV_n_;
-  std::vector<Vec2> lapV_, G_, v_n_, v_s_, shift_dir_, lap_esum_;
+  std::vector<Vec2> lapV_, G_, v_n_, v_s_, shift_dir_;
   // per-pair weights of the geometry sweep (solver/sweeps.hpp)
   std::vector<std::uint32_t> near_a_, near_b_;  // nearest surface particles (surface guard)
   std::vector<real> film_;                      // unresolved-film fraction of each particle, this step

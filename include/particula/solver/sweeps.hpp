@@ -72,10 +72,10 @@ struct SweepContext {
   // per particle: 1 for an isolated fluid particle this step, left out of P.20 (surface_guard.hpp; null: none)
   const std::uint8_t* isolated = nullptr;
   bool fatehi_manzari = true;  // false: Morris Laplacian (baseline)
+  bool zeroth_order_gradient = true;  // fluid particles: gradient weights with sum_j grad_w = 0 (geometry_at)
   // written by the geometry sweep
-  const Vec2* grad_w = nullptr;    // per pair: w_j B_i gradW_ij (renormalized gradient weight, P.7)
-  const real* lap_w = nullptr;     // per pair: Laplacian weight / r_ij (see pair_weights)
-  const Vec2* lap_esum = nullptr;  // per particle: sum_j (Laplacian weight) e_ij
+  const Vec2* grad_w = nullptr;    // per pair: the first-derivative weight (geometry_at)
+  const real* lap_w = nullptr;     // per pair: the Laplacian weight (geometry_at)
 };
 
 // ---- geometry (positions and start-of-step volumes only, once per step) --------------------
@@ -86,7 +86,7 @@ struct GeometryAt {
   real rbar = 0;         // mean neighbour distance (P.33)
   Vec2 normal_sum;       // sum_j w_j gradW_ij, the P.18 normal before normalization
   Vec2 shift_direction;  // sum_j (rbar^2 / r^2) e_ij of P.33, before the factor beta V_max dt
-  Vec2 lap_esum;         // sum_j (Laplacian weight) e_ij
+  Vec2 lap_esum;         // sum_j (Laplacian weight) e_ij, folded into lap_w
   NearestSurfaces near;  // fluid particles: the nearest surface particles (surface guard)
   real others_fluid_support = 0;  // fluid particles: sum_{j fluid} w_j W_ij over the neighbours (isolated)
   bool B_ok = true;
@@ -99,10 +99,15 @@ struct GeometryAt {
 /// (P.33), and the per-pair weights of every later sweep, written to grad_w[k], lap_w[k] for
 /// the pairs k of i:
 ///   grad_w = w_j B_i gradW_ij, so <grad u>_i = sum_k grad_w (u_j - u_i)            (P.7)
+///     and at fluid particles with numerics.gradient = "consistent" w_j B~_i (gradW_ij -
+///     gamma_i W_ij) instead, whose weights sum to zero (consistent_gradient_correction);
 ///   Laplacian pair term = weight [ (u_i - u_j)/r - e . <grad u>_i ]                 (P.10)
 ///     with weight = 2 w_j W' (e . Bhat_i . e) (Fatehi-Manzari) or 2 w_j W' and no
-///     gradient term (Morris, P.8); stored as lap_w = weight / r and, per particle,
-///     lap_esum = sum_k weight e, so that <lap u>_i = sum_k lap_w (u_i - u_j) - lap_esum . <grad u>_i.
+///     gradient term (Morris, P.8), and <grad u>_i the P.7 gradient, with which the Laplacian is
+///     exact for quadratic fields. Since that gradient is itself a pair sum, the Laplacian is one
+///     pair sum <lap u>_i = sum_k lap_w (u_i - u_j) with
+///       lap_w = weight / r + lap_esum . (w_j B_i gradW_ij),   lap_esum = sum_k weight e_ij,
+///     so it needs no P.7 gradient of its own when grad_w holds the consistent one.
 /// Dummy particles (baseline) get B = Bhat = I: their pressure gradient, which the Rhie-Chow
 /// term of their fluid neighbours reads, is the plain SPH gradient; no Laplacian weights.
 /// `d0` is rbar for a particle alone.
@@ -123,6 +128,8 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
   Mat2 S;
   LaplacianMoments mom;
   real rsum = 0;
+  real support = 0;   // sum_j w_j W_ij (j != i)
+  Vec2 support_r;     // sum_j w_j W_ij r_ij
   // First pass: the moment sums of B and Bhat. The pair vector and distance are parked in the
   // pair's output slots (grad_w[k], lap_w[k]) so the second pass reads them from cache instead
   // of recomputing the minimum image and the square root.
@@ -136,7 +143,10 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
     out.normal_sum += (w * g.F) * g.rij;
     rsum += g.r;
     if (j < c.nb && i >= c.nb && c.kind[j] == Kind::Boundary) offer_surface(out.near, j, c.group[j], g.r * g.r);
-    if (j >= c.nb && i >= c.nb) out.others_fluid_support += w * c.kernel.W(g.r);
+    const real wW = w * c.kernel.W(g.r);
+    support += wW;
+    support_r += wW * g.rij;
+    if (j >= c.nb && i >= c.nb) out.others_fluid_support += wW;
     grad_w[k] = g.rij;
     lap_w[k] = g.r;
   }
@@ -153,7 +163,22 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
   out.rbar = np > 0 ? rsum / static_cast<real>(np) : d0;
   const real rbar2 = out.rbar * out.rbar;
   const bool fluid = i >= c.nb;
-  // Second pass: the stored weights of every later sweep, and the shifting direction.
+  // The first-derivative weights of a fluid particle: with numerics.gradient = "consistent" the
+  // kernel gradient corrected to zeroth order before the renormalization, so that the weights sum
+  // to zero (consistent_gradient_correction); the paper's otherwise, or where that fails.
+  Mat2 Bg;
+  Vec2 gamma;
+  const bool consistent = fluid && c.zeroth_order_gradient && out.B_ok &&
+                          consistent_gradient_correction(S, out.normal_sum, support, support_r, Bg, gamma);
+  // Second pass (Fatehi-Manzari): lap_esum, which the third folds into the Laplacian weights.
+  if (c.fatehi_manzari)
+    for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
+      const Vec2 rij = grad_w[k];
+      const real r = lap_w[k];
+      const real inv_r = 1 / r;
+      out.lap_esum += fm_pair_weight(out.Bhat, c.vol[c.j[k]], c.kernel.F(r) * r, inv_r * rij) * (inv_r * rij);
+    }
+  // Third pass: the stored weights of every later sweep, and the shifting direction.
   for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
     const Vec2 rij = grad_w[k];
     const real r = lap_w[k];
@@ -162,14 +187,10 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
     const real inv_r = 1 / r;
     const Vec2 eij = inv_r * rij;
     const real dW = F * r;
-    grad_w[k] = (w * F) * (out.B * rij);
-    if (c.fatehi_manzari) {
-      const real weight = fm_pair_weight(out.Bhat, w, dW, eij);
-      lap_w[k] = weight * inv_r;
-      out.lap_esum += weight * eij;
-    } else {
-      lap_w[k] = morris_pair_weight(w, dW) * inv_r;
-    }
+    const Vec2 paper_w = (w * F) * (out.B * rij);  // w_j B_i gradW_ij (P.7)
+    lap_w[k] = c.fatehi_manzari ? fm_pair_weight(out.Bhat, w, dW, eij) * inv_r + dot(out.lap_esum, paper_w)
+                                : morris_pair_weight(w, dW) * inv_r;
+    grad_w[k] = consistent ? Bg * (w * (F * rij - c.kernel.W(r) * gamma)) : paper_w;
     if (fluid) out.shift_direction += shifting_pair(rbar2, inv_r, eij);
   }
   return out;
@@ -177,8 +198,9 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
 
 // ---- derivative sweeps (stored weights times gathered fields) -------------------------------
 
-/// Renormalized velocity gradient L_i = <grad V>_i (P.7, L_ab = d_a V_b) and the viscous
-/// Laplacian <lap V>_i (P.10 or P.8). Zero for dummies.
+/// Velocity gradient L_i = <grad V>_i (L_ab = d_a V_b; renormalized, P.7, and at fluid particles
+/// also corrected to zeroth order with numerics.gradient = "consistent") and the viscous
+/// Laplacian <lap V>_i (P.10 or P.8, one pair sum: geometry_at). Zero for dummies.
 PARTICULA_HD void velocity_derivatives_at(const SweepContext& c, std::size_t i, const Vec2* v, Mat2& L, Vec2& lap) {
   L = Mat2{};
   lap = Vec2{};
@@ -192,10 +214,11 @@ PARTICULA_HD void velocity_derivatives_at(const SweepContext& c, std::size_t i, 
     L += vector_gradient_pair(c.grad_w[k], dv);
     a -= c.lap_w[k] * dv;            // lap_w (V_i - V_j)
   }
-  lap = a - c.lap_esum[i] * L;
+  lap = a;
 }
 
-/// <grad P>_i / rho_i with the renormalized gradient (P.7).
+/// <grad P>_i / rho_i with the renormalized gradient (P.7; at fluid particles with
+/// numerics.gradient = "consistent" also corrected to zeroth order, geometry_at).
 PARTICULA_HD Vec2 pressure_gradient_at(const SweepContext& c, std::size_t i, const real* p, const real* rho) {
   Vec2 g;
   const real pi = p[i];
@@ -221,7 +244,7 @@ PARTICULA_HD real rhie_chow_at(const SweepContext& c, std::size_t i, const real*
     div_g += dot(c.grad_w[k], G[j] - Gi);
     lap_p += c.lap_w[k] * ((pi - p[j]) / (0.5 * (rhoi + rho[j])));
   }
-  return div_g - (lap_p - dot(c.lap_esum[i], Gi));
+  return div_g - lap_p;
 }
 
 /// Whether neighbour j of surface particle i is the surface of another solid facing it across a

@@ -26,6 +26,29 @@ PARTICULA_HD bool renormalization_tensor(const Mat2& S, Mat2& B, real rel_tol = 
   return true;
 }
 
+/// The zeroth-order correction of the renormalized gradient (Bonet and Lok 1999, the gradient of a
+/// Shepard-corrected kernel): gradW_ij becomes gradW_ij - gamma_i W_ij with
+///   gamma_i = sum_j w_j gradW_ij / sum_j w_j W_ij   (`normal_sum` / `support`, j != i),
+/// so that the weights sum to zero, and B~ renormalizes the corrected gradient:
+///   B~ = -[ S - gamma (x) sum_j w_j W_ij r_ij ]^-1   (`support_r` the last sum),
+/// which keeps the gradient exact for linear fields. Why (docs/method-notes.md, "The self-coupled
+/// mode"): with P.7 alone a particle's own pressure enters its gradient as -P_i B sum_j w_j gradW_ij
+/// and its own velocity its divergence as -V_i . B sum_j w_j gradW_ij; on an irregular distribution
+/// (that sum, n_i, nonzero: compressed fluid, a single-layer wall) the pair (P', V' along n_i) obeys
+/// d^2 P'/dt^2 = c^2 |n_i|^2 P' and grows at the rate c |n_i|. With the weights summing to zero
+/// neither own value enters, as on a regular lattice. Returns false (outputs untouched) without
+/// support or with a singular corrected moment.
+PARTICULA_HD bool consistent_gradient_correction(const Mat2& S, Vec2 normal_sum, real support, Vec2 support_r,
+                                                 Mat2& B, Vec2& gamma) {
+  if (!(support > 0)) return false;
+  const Vec2 g = (1 / support) * normal_sum;
+  Mat2 Bz;
+  if (!renormalization_tensor(S - outer(g, support_r), Bz)) return false;
+  B = Bz;
+  gamma = g;
+  return true;
+}
+
 /// Contribution of neighbour j to S = sum_j w_j r_ij (x) gradW_ij, with gradW_ij = F r_ij.
 PARTICULA_HD Mat2 renormalization_pair(real w_j, real F, Vec2 r_ij) { return (w_j * F) * outer(r_ij, r_ij); }
 
