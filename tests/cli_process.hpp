@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "scratch_dir.hpp"
+
 extern char** environ;
 
 namespace cli_test {
@@ -43,7 +45,8 @@ class Child {
     argv.push_back(nullptr);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
     posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
     if (posix_spawnp(&pid_, argv[0], &actions, nullptr, argv.data(), environ) != 0) pid_ = -1;
     posix_spawn_file_actions_destroy(&actions);
@@ -102,13 +105,8 @@ inline void write_text(const std::filesystem::path& p, const std::string& text) 
   std::ofstream(p, std::ios::binary) << text;
 }
 
-/// An empty scratch directory for one test.
-inline std::filesystem::path fresh_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() / ("particula_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
-}
+/// An empty scratch directory for one test (scratch_dir.hpp: removed when the binary passes).
+inline std::filesystem::path fresh_dir(const std::string& name) { return test_scratch::scratch_dir(name); }
 
 /// A process id that is not running (a child that has ended and been reaped).
 inline long dead_pid() {

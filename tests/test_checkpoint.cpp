@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,6 +18,7 @@
 #include "particula/io/binary.hpp"
 #include "particula/run/checkpoint.hpp"
 #include "particula/scene/scene.hpp"
+#include "scratch_dir.hpp"
 
 using namespace particula;
 namespace fs = std::filesystem;
@@ -133,8 +134,7 @@ std::string field_bytes(const Checkpoint& c) {
 }
 
 fs::path scratch() {
-  const fs::path d = fs::temp_directory_path() / ("particula_ckpt_" + std::to_string(::getpid()));
-  fs::create_directories(d);
+  static const fs::path d = test_scratch::scratch_dir("ckpt");
   return d;
 }
 
@@ -339,8 +339,8 @@ Verdict judge(const std::string& bytes, std::string* why = nullptr) {
     return Verdict::RefusedAgainstCase;
   }
   const Domain domain{c.domain_min, c.domain_max, c.periodic_x, c.periodic_y};
-  Solver solver(physics_params(c), domain, std::move(k.particles), std::move(k.groups), SolverStart::Restart, k.time,
-                k.step);
+  Solver solver(physics_params(c), domain, std::move(k.particles), std::move(k.groups), SolverStart::Restart,
+                k.time, k.step);
   (void)solver.step();  // a numerical failure (exit 3) is a fine outcome; a crash is not
   return Verdict::Accepted;
 }
@@ -348,7 +348,8 @@ Verdict judge(const std::string& bytes, std::string* why = nullptr) {
 /// The file's checksum recomputed after its payload was edited.
 void reseal(std::string& bytes) {
   const std::size_t header = 24, trailer = 8;
-  const std::uint64_t sum = io::fnv1a64(std::string_view(bytes).substr(header, bytes.size() - header - trailer));
+  const std::uint64_t sum =
+      io::fnv1a64(std::string_view(bytes).substr(header, bytes.size() - header - trailer));
   std::memcpy(bytes.data() + bytes.size() - trailer, &sum, sizeof sum);
 }
 
@@ -391,9 +392,10 @@ TEST(CheckpointTampering, RandomBytesWithAValidChecksumAreRefusedOrRunSafely) {
     reseal(bytes);
     ++counts[static_cast<int>(judge(bytes))];
   }
-  std::printf("random payload edits (valid checksum): %d mutants: %d refused at decode, %d with a broken case, %d "
-              "refused against the case, %d accepted and stepped without a crash\n",
-              mutants, counts[0], counts[1], counts[2], counts[3]);
+  std::printf(
+      "random payload edits (valid checksum): %d mutants: %d refused at decode, %d with a broken case, %d "
+      "refused against the case, %d accepted and stepped without a crash\n",
+      mutants, counts[0], counts[1], counts[2], counts[3]);
   EXPECT_EQ(counts[0] + counts[1] + counts[2] + counts[3], mutants);
   EXPECT_GT(counts[0], 0);
 }

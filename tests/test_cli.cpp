@@ -12,6 +12,7 @@
 #include "particula/io/csv.hpp"
 #include "particula/io/json.hpp"
 #include "particula/io/vtk.hpp"
+#include "scratch_dir.hpp"
 
 namespace fs = std::filesystem;
 
@@ -35,11 +36,8 @@ Result run(const std::string& args) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
 }
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("particula_cli_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  return d;
-}
+/// A path for a run directory the test makes (absent; removed when the binary passes).
+fs::path fresh_dir(const std::string& name) { return test_scratch::scratch_dir("cli_" + name, false); }
 
 std::string read(const fs::path& p) {
   std::ifstream in(p);
@@ -55,7 +53,8 @@ TEST(Cli, RunWritesTheRunDirectory) {
   const auto r = run("run " + (kSource / "cases/couette.toml").string() + " --out " + out.string() +
                      " --quiet --set time.end=0.1 --set output.snapshot_interval=0.05");
   ASSERT_EQ(r.code, 0) << r.output;
-  for (const char* f : {"case.toml", "summary.json", "particles.pvd", "probe_profile.csv", "bodies.csv", "log.txt"})
+  for (const char* f :
+       {"case.toml", "summary.json", "particles.pvd", "probe_profile.csv", "bodies.csv", "log.txt"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   const std::string summary = read(out / "summary.json");
   EXPECT_NE(summary.find("\"status\": \"completed\""), std::string::npos) << summary;
@@ -87,7 +86,8 @@ TEST(Cli, RunWritesTheRunDirectory) {
 TEST(Cli, ExistingRunDirectoryIsRefusedWithoutOverwrite) {
   const fs::path out = fresh_dir("exists");
   fs::create_directories(out);
-  const auto r = run("run " + (kSource / "cases/couette.toml").string() + " --out " + out.string() + " --quiet");
+  const auto r =
+      run("run " + (kSource / "cases/couette.toml").string() + " --out " + out.string() + " --quiet");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("--overwrite"), std::string::npos) << r.output;
 }
@@ -124,7 +124,8 @@ TEST(Cli, NumericalFailureIsExitThreeWithFinalSnapshot) {
   EXPECT_NE(r.output.find("numerical failure at t ="), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("particle"), std::string::npos) << r.output;
   // the message names the cause with its numbers: g H / c^2 = 9.81 x 0.1 / 0.05^2 = 392
-  EXPECT_NE(r.output.find("gravity compresses the fluid by g H / c^2 = 3.9e+02"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("gravity compresses the fluid by g H / c^2 = 3.9e+02"), std::string::npos)
+      << r.output;
   EXPECT_NE(r.output.find("fluid.c of at least 9.9 m/s"), std::string::npos) << r.output;
   const std::string summary = read(out / "summary.json");
   EXPECT_NE(summary.find("\"status\": \"failed\""), std::string::npos) << summary;

@@ -14,6 +14,7 @@
 #include "particula/io/csv.hpp"
 #include "particula/run/observers.hpp"
 #include "particula/scene/scene.hpp"
+#include "scratch_dir.hpp"
 
 using namespace particula;
 namespace fs = std::filesystem;
@@ -22,12 +23,7 @@ namespace {
 
 constexpr real kNaN = std::numeric_limits<real>::quiet_NaN();
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("particula_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path fresh_dir(const std::string& name) { return test_scratch::scratch_dir(name); }
 
 /// A closed 0.02 m box at d0 = 1e-3 m with a probe up its middle.
 Case probed_box() {
@@ -43,7 +39,8 @@ template <class Edit>
 Solver solver_with(const Case& c, Edit edit) {
   Scene s = build_scene(c);
   edit(s.particles, s.groups);
-  return Solver(s.params, s.domain, std::move(s.particles), std::move(s.groups), SolverStart::Restart, 0.1, 10);
+  return Solver(s.params, s.domain, std::move(s.particles), std::move(s.groups), SolverStart::Restart, 0.1,
+                10);
 }
 
 /// Index of the fluid particle nearest to x.
@@ -79,7 +76,8 @@ TEST(RunOutputs, NonFiniteProbeValueIsAFailureAndNotWritten) {
     run_detail::RunOutputs out(dir, c);
     const auto f = out.write(s, true);
     ASSERT_TRUE(f.has_value());
-    EXPECT_NE(f->what.find("non-finite value (NaN or Inf) in probe 'mid' (point 4): p = nan"), std::string::npos)
+    EXPECT_NE(f->what.find("non-finite value (NaN or Inf) in probe 'mid' (point 4): p = nan"),
+              std::string::npos)
         << f->what;
     EXPECT_NEAR(f->position.x, 0.01, 1e-12);
   }
@@ -154,7 +152,7 @@ TEST(DerivedOutputs, CoefficientsFollowTheirDefinitions) {
   // U = (0, 2) m/s upwards, L = 0.5 m, rho0 = 1000, nu = 1e-3: q = 0.5 rho0 U^2 L = 1000 N/m
   const BodyReference ref{{0, 2}, 0.5};
   const Coefficients k = body_coefficients(ref, {3, 4}, 50, {0, -0.5}, 1000, 1e-3);
-  EXPECT_DOUBLE_EQ(k.re, 1000.0);     // U L / nu
+  EXPECT_DOUBLE_EQ(k.re, 1000.0);      // U L / nu
   EXPECT_DOUBLE_EQ(k.re_body, 250.0);  // |v| L / nu
   EXPECT_DOUBLE_EQ(k.cd, 4e-3);        // the force along U
   EXPECT_DOUBLE_EQ(k.cl, -3e-3);       // the force along U turned 90 degrees counter-clockwise: -x
