@@ -92,6 +92,8 @@ TEST_P(GradientSchemes, GradientOfLinearFieldIsExact) {
   EXPECT_GT(counted[1], 50);
   EXPECT_GT(counted[2], 50);
   EXPECT_EQ(sv.counters().singular_B, 0);
+  // The bound of sparse supports leaves full and half (wall) supports alone.
+  EXPECT_EQ(sv.counters().sparse_support, 0);
 }
 
 // A particle's own pressure must not enter its own gradient: with the paper's weights (P.7) it
@@ -213,7 +215,8 @@ TEST(Operators, BhatSolvesItsDefiningSystem) {
   LaplacianMoments m;
   const real r[] = {0.9, 1.3, 2.1, 1.7, 0.6, 2.4};
   const real ang[] = {0.1, 1.9, 2.7, 4.0, 5.1, 3.3};
-  for (int k = 0; k < 6; ++k) laplacian_moments_pair(m, 0.8 + 0.1 * k, r[k], -0.3 * k - 0.2, {std::cos(ang[k]), std::sin(ang[k])});
+  for (int k = 0; k < 6; ++k)
+    laplacian_moments_pair(m, 0.8 + 0.1 * k, r[k], -0.3 * k - 0.2, {std::cos(ang[k]), std::sin(ang[k])});
   const Mat2 B{1.2, 0.1, 0.1, 0.9};
   Mat2 Bh;
   ASSERT_TRUE(laplacian_correction_tensor(m, B, Bh, BhatCheck::None));
@@ -236,7 +239,8 @@ TEST(Operators, UnsoundBhatFallsBackToNormalizedIdentity) {
   // Moments of a one-sided, nearly collinear support: the solve gives an indefinite tensor,
   // which a boundary particle must not use.
   LaplacianMoments m;
-  for (int k = 0; k < 5; ++k) laplacian_moments_pair(m, 1.0, 1.0 + 0.2 * k, -1.0, {std::cos(0.05 * k), std::sin(0.05 * k)});
+  for (int k = 0; k < 5; ++k)
+    laplacian_moments_pair(m, 1.0, 1.0 + 0.2 * k, -1.0, {std::cos(0.05 * k), std::sin(0.05 * k)});
   Mat2 raw, guarded;
   laplacian_correction_tensor(m, identity2(), raw, BhatCheck::None);
   const bool ok = laplacian_correction_tensor(m, identity2(), guarded, BhatCheck::Sound);
@@ -266,4 +270,62 @@ TEST(Operators, SingularRenormalizationFallsBackToIdentity) {
   EXPECT_FALSE(renormalization_tensor(S, B));
   EXPECT_EQ(B.xx, 1.0);
   EXPECT_EQ(B.xy, 0.0);
+}
+
+/// The largest singular value of a 2 x 2 matrix.
+static real largest_singular_value(const Mat2& m) {
+  const real a = ddot(m, m), d = det(m);
+  return std::sqrt(0.5 * (a + std::sqrt(std::max(real(0), a * a - 4 * d * d))));
+}
+
+// A fluid particle at the edge of a void with three neighbours almost on one line (seen under a
+// cylinder lifting off the floor): its moment matrix is nearly singular across the line, and the
+// renormalized gradient amplified the neighbours' pressure differences a thousandfold. The bound
+// lifts the smallest eigenvalue of M = -S to kMinMomentEigenvalue, so |B| <= 1 / that.
+TEST(Operators, SparseSupportBoundsTheRenormalizedGradient) {
+  const WendlandC2 kernel(2.0);
+  const real w = 1.0;  // d0 = 1
+  Mat2 S;
+  Vec2 normal_sum, support_r;
+  real support = 0;
+  for (Vec2 xj : {Vec2{1.0, 0.0}, Vec2{-1.0, 0.01}, Vec2{0.5, -0.01}}) {
+    const Vec2 rij = Vec2{0, 0} - xj;
+    const real r = norm(rij);
+    S += renormalization_pair(w, kernel.F(r), rij);
+    normal_sum += (w * kernel.F(r)) * rij;
+    support += w * kernel.W(r);
+    support_r += (w * kernel.W(r)) * rij;
+  }
+  Mat2 B;
+  ASSERT_TRUE(renormalization_tensor(S, B));  // passes the singularity test...
+  EXPECT_GT(largest_singular_value(B), 1e3);  // ...with a gradient amplified a thousandfold
+  Mat2 bounded = S;
+  EXPECT_TRUE(bound_sparse_moment(bounded));
+  ASSERT_TRUE(renormalization_tensor(bounded, B));
+  EXPECT_LT(largest_singular_value(B), 1 / kMinMomentEigenvalue + 1e-9);
+  // The zeroth-order-corrected moment is bounded the same way, and says so.
+  Vec2 gamma;
+  bool sparse = false;
+  ASSERT_TRUE(consistent_gradient_correction(S, normal_sum, support, support_r, B, gamma, sparse));
+  EXPECT_TRUE(sparse);
+  EXPECT_LT(largest_singular_value(B), 1 / kMinMomentEigenvalue + 1e-9);
+}
+
+// A full support on a lattice is left alone (M = I there for the kernel's normalization).
+TEST(Operators, SparseSupportBoundLeavesFullSupportsAlone) {
+  const real d0 = 1.0;
+  const WendlandC2 kernel(3.0 * d0);
+  Mat2 S;
+  for (int a = -3; a <= 3; ++a)
+    for (int b = -3; b <= 3; ++b) {
+      if (a == 0 && b == 0) continue;
+      const Vec2 rij{-a * d0, -b * d0};
+      S += renormalization_pair(d0 * d0, kernel.F(norm(rij)), rij);
+    }
+  EXPECT_NEAR(-S.xx, 1.0, 0.02);
+  EXPECT_NEAR(-S.yy, 1.0, 0.02);
+  Mat2 same = S;
+  EXPECT_FALSE(bound_sparse_moment(same));
+  EXPECT_EQ(same.xx, S.xx);
+  EXPECT_EQ(same.yy, S.yy);
 }

@@ -142,7 +142,7 @@ __global__ void group_loads_kernel(const GroupRange* ranges, const Kind* kind, c
 
 enum Counter {
   kSingularB = 0, kSingularBhat, kWallKept, kWallExtrapolated, kWallExtrapolatedFar, kNormalFallback, kSurfacePushed,
-  kGapSqueezed, kIsolatedLeftOut,
+  kGapSqueezed, kIsolatedLeftOut, kSparseSupport,
   kUnhealthy,
   kCounters
 };
@@ -305,6 +305,7 @@ class CudaBackend final : public DeviceBackend {
       if (kind[i] == Kind::Dummy || is_buffer(kind[i])) return;
       if (!g.B_ok) atomicAdd(&counters[kSingularB], 1ull);
       if (!g.Bhat_ok) atomicAdd(&counters[kSingularBhat], 1ull);
+      if (g.sparse) atomicAdd(&counters[kSparseSupport], 1ull);
       if (i < nb && kernel_normals && kind[i] == Kind::Boundary && !kernel_normal(g.normal_sum, normal[i]))
         atomicAdd(&counters[kNormalFallback], 1ull);
     });
@@ -679,6 +680,7 @@ class CudaBackend final : public DeviceBackend {
     cnt.surface_pushed += static_cast<std::int64_t>(h[kSurfacePushed]);
     cnt.gap_squeezed += static_cast<std::int64_t>(h[kGapSqueezed]);
     cnt.isolated_left_out += static_cast<std::int64_t>(h[kIsolatedLeftOut]);
+    cnt.sparse_support += static_cast<std::int64_t>(h[kSparseSupport]);
     zero_counters();
   }
 

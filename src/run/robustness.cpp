@@ -329,16 +329,26 @@ std::vector<double> kinetic_energy(const Case& c, const std::vector<BodyTrack>& 
 }  // namespace
 
 std::vector<ValidationCheck> check_kinetic_energy_decay(const fs::path& run_dir, const Case& c,
-                                                        double max_fraction) {
+                                                        double max_fraction, double window) {
   const std::vector<BodyTrack> tracks = tracks_or_throw(run_dir, c);
   const std::vector<double> ke = kinetic_energy(c, tracks);
   const auto peak = std::max_element(ke.begin(), ke.end());
-  const double t_peak = tracks[0].t[static_cast<std::size_t>(peak - ke.begin())],
-               t_end = tracks[0].t[ke.size() - 1];
-  const double frac = *peak > 0 ? ke.back() / *peak : std::nan("");
-  return {make_check(fmt::format("kinetic energy of the free bodies at t = {:.4g} s / its peak", t_end), frac,
-                     fmt::format("{:.3g} (peak {:.3g} J/m at t = {:.4g} s)", frac, *peak, t_peak),
-                     "0 (at rest)", fmt::format("< {}", max_fraction), frac < max_fraction)};
+  const std::vector<double>& t = tracks[0].t;
+  const double t_peak = t[static_cast<std::size_t>(peak - ke.begin())], t_end = t[ke.size() - 1];
+  double sum = 0, t_from = t_end;
+  std::size_t rows = 0;
+  for (std::size_t k = ke.size(); k-- > 0 && t[k] >= t_end - window * (1 + 1e-9);) {
+    sum += ke[k];
+    t_from = t[k];
+    ++rows;
+  }
+  const double frac = *peak > 0 && rows > 0 ? sum / static_cast<double>(rows) / *peak : std::nan("");
+  return {make_check(
+      fmt::format("mean kinetic energy of the free bodies over t = {:.4g} to {:.4g} s / its peak", t_from, t_end),
+      frac,
+      fmt::format("{:.3g} ({} rows; at the end {:.3g}; peak {:.3g} J/m at t = {:.4g} s)", frac, rows,
+                  *peak > 0 ? ke.back() / *peak : std::nan(""), *peak, t_peak),
+      "0 (at rest)", fmt::format("< {}", max_fraction), frac < max_fraction)};
 }
 
 std::vector<ValidationCheck> check_bodies_touching(const fs::path& run_dir, const Case& c, double max_gap) {

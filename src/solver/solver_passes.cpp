@@ -81,8 +81,8 @@ void Solver::geometry_sweep() {
   const bool kernel_normals = prm_.kernel_normals;
   const real one_neighbour = prm_.d0 * prm_.d0 * kernel_.W(prm_.d0);
   std::uint8_t* isolated_out = isolated_.data();
-  std::int64_t bad_B = 0, bad_Bhat = 0, bad_normal = 0, lone = 0;
-#pragma omp parallel for schedule(static) reduction(+ : bad_B, bad_Bhat, bad_normal, lone)
+  std::int64_t bad_B = 0, bad_Bhat = 0, bad_normal = 0, lone = 0, sparse = 0;
+#pragma omp parallel for schedule(static) reduction(+ : bad_B, bad_Bhat, bad_normal, lone, sparse)
   for (std::size_t i = 0; i < n; ++i) {
     const GeometryAt g = geometry_at(c, i, prm_.d0, grad_w, lap_w);
     isolated_out[i] = i >= nb && P_.kind[i] == Kind::Fluid && isolated(g.others_fluid_support, one_neighbour, g.near.a) ? 1 : 0;
@@ -97,6 +97,7 @@ void Solver::geometry_sweep() {
     if (P_.kind[i] == Kind::Dummy || is_buffer(P_.kind[i])) continue;
     bad_B += g.B_ok ? 0 : 1;
     bad_Bhat += g.Bhat_ok ? 0 : 1;
+    sparse += g.sparse ? 1 : 0;
     // P.18 normal; on failure the analytic normal set by place_boundary stays.
     if (i < nb && kernel_normals && P_.kind[i] == Kind::Boundary && !kernel_normal(g.normal_sum, P_.normal[i]))
       ++bad_normal;
@@ -105,6 +106,7 @@ void Solver::geometry_sweep() {
   counters_.singular_Bhat += bad_Bhat;
   counters_.normal_fallback += bad_normal;
   counters_.isolated_left_out += lone;
+  counters_.sparse_support += sparse;
   // The unresolved-film fractions of this step, from the nearest surfaces and the normals just set.
   film_.resize(n);
   const SweepContext cf = sweep_context();

@@ -42,10 +42,12 @@ std::vector<ValidationCheck> check_no_overlap(const std::filesystem::path& run_d
 /// time); fails when there is any.
 std::vector<ValidationCheck> check_fluid_contained(const std::filesystem::path& run_dir, const Case& c,
                                                    double depth = 0.5);
-/// Kinetic energy of the free bodies (translation and rotation): its value at the end over its
-/// peak must be below `max_fraction` (the bodies came to rest).
+/// Kinetic energy of the free bodies (translation and rotation): its mean over the rows of the last
+/// `window` seconds of the run, over its peak, must be below `max_fraction` (the bodies came to
+/// rest). A mean, not the last row: a pile that is still rearranging fluctuates by a factor of 2-3
+/// from one row to the next (settling_pile: 1.6 % to 3.4 % of the peak within 0.15 s).
 std::vector<ValidationCheck> check_kinetic_energy_decay(const std::filesystem::path& run_dir, const Case& c,
-                                                        double max_fraction);
+                                                        double max_fraction, double window = 0.1);
 /// At the end every free body lies within `max_gap` d0 of a wall or another body (it rests on
 /// something).
 std::vector<ValidationCheck> check_bodies_touching(const std::filesystem::path& run_dir, const Case& c,

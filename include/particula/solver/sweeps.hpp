@@ -90,6 +90,7 @@ struct GeometryAt {
   NearestSurfaces near;  // fluid particles: the nearest surface particles (surface guard)
   real others_fluid_support = 0;  // fluid particles: sum_{j fluid} w_j W_ij over the neighbours (isolated)
   bool B_ok = true;
+  bool sparse = false;  // fluid particle whose moment matrix was bounded below (bound_sparse_moment)
   bool Bhat_ok = true;  // false only for a fluid particle's singular system: at boundary particles
                         // Bhat = k I is the designed guard (method-notes), not an event
 };
@@ -150,7 +151,11 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
     grad_w[k] = g.rij;
     lap_w[k] = g.r;
   }
-  out.B_ok = renormalization_tensor(S, out.B);
+  // A fluid particle's moment matrix is bounded below (bound_sparse_moment: a sparse support at
+  // the edge of a void); boundary particles keep theirs, which P.20 solves through.
+  Mat2 S_fluid = S;
+  if (i >= c.nb) out.sparse = bound_sparse_moment(S_fluid);
+  out.B_ok = renormalization_tensor(S_fluid, out.B);
   // Every particle's Bhat must be usable: sound (positive definite, bounded) at a boundary
   // particle; bounded and diffusive on average at a fluid particle, where an anti-diffusive Bhat
   // beside a void in the particle distribution (seen under two bodies resting on a floor) made
@@ -169,7 +174,7 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
   Mat2 Bg;
   Vec2 gamma;
   const bool consistent = fluid && c.zeroth_order_gradient && out.B_ok &&
-                          consistent_gradient_correction(S, out.normal_sum, support, support_r, Bg, gamma);
+                          consistent_gradient_correction(S, out.normal_sum, support, support_r, Bg, gamma, out.sparse);
   // Second pass (Fatehi-Manzari): lap_esum, which the third folds into the Laplacian weights.
   if (c.fatehi_manzari)
     for (std::size_t q = 0, k = b; q < np; ++q, k += st) {

@@ -26,6 +26,30 @@ PARTICULA_HD bool renormalization_tensor(const Mat2& S, Mat2& B, real rel_tol = 
   return true;
 }
 
+/// Smallest eigenvalue accepted for the moment matrix M = -S of a fluid particle's gradient (1 for
+/// a full support on any lattice, about 0.5 for half a support, e.g. at a free surface).
+inline constexpr real kMinMomentEigenvalue = 0.25;
+
+/// Bounds the renormalized gradient of a sparse support: where the symmetric part of M = -S has an
+/// eigenvalue below `floor`, M is lifted by (floor - that eigenvalue) I, so that |B| = |M^-1| <=
+/// 1 / floor (x . M x >= floor |x|^2 gives |M x| >= floor |x|). Why (docs/method-notes.md, "Sparse
+/// supports"): a fluid particle left with three or four neighbours at the edge of a void (under a
+/// body lifting off a wall) has an eigenvalue near 0 and a gradient amplified a thousandfold; its
+/// neighbours' small pressure differences then threw it across the void at 1 m/s, and the
+/// compression where it landed ended the run (`drop_rebound` at d0 = 1e-4). Full and half
+/// supports (eigenvalues 0.5-1.3) are untouched, so the gradient stays exact for linear fields
+/// there. Returns true when it lifted.
+PARTICULA_HD bool bound_sparse_moment(Mat2& S, real floor = kMinMomentEigenvalue) {
+  const real a = -S.xx, d = -S.yy, b = -0.5 * (S.xy + S.yx);
+  const real half_diff = 0.5 * (a - d);
+  const real lambda_min = 0.5 * (a + d) - std::sqrt(half_diff * half_diff + b * b);
+  if (!(lambda_min < floor)) return false;
+  const real lift = floor - lambda_min;
+  S.xx -= lift;
+  S.yy -= lift;
+  return true;
+}
+
 /// The zeroth-order correction of the renormalized gradient (Bonet and Lok 1999, the gradient of a
 /// Shepard-corrected kernel): gradW_ij becomes gradW_ij - gamma_i W_ij with
 ///   gamma_i = sum_j w_j gradW_ij / sum_j w_j W_ij   (`normal_sum` / `support`, j != i),
@@ -36,14 +60,17 @@ PARTICULA_HD bool renormalization_tensor(const Mat2& S, Mat2& B, real rel_tol = 
 /// and its own velocity its divergence as -V_i . B sum_j w_j gradW_ij; on an irregular distribution
 /// (that sum, n_i, nonzero: compressed fluid, a single-layer wall) the pair (P', V' along n_i) obeys
 /// d^2 P'/dt^2 = c^2 |n_i|^2 P' and grows at the rate c |n_i|. With the weights summing to zero
-/// neither own value enters, as on a regular lattice. Returns false (outputs untouched) without
-/// support or with a singular corrected moment.
+/// neither own value enters, as on a regular lattice. The corrected moment is bounded below as
+/// P.7's is (bound_sparse_moment; `sparse` set when it lifted). Returns false (B, gamma untouched)
+/// without support or with a singular corrected moment.
 PARTICULA_HD bool consistent_gradient_correction(const Mat2& S, Vec2 normal_sum, real support, Vec2 support_r,
-                                                 Mat2& B, Vec2& gamma) {
+                                                 Mat2& B, Vec2& gamma, bool& sparse) {
   if (!(support > 0)) return false;
   const Vec2 g = (1 / support) * normal_sum;
+  Mat2 Sz = S - outer(g, support_r);
+  sparse = bound_sparse_moment(Sz) || sparse;
   Mat2 Bz;
-  if (!renormalization_tensor(S - outer(g, support_r), Bz)) return false;
+  if (!renormalization_tensor(Sz, Bz)) return false;
   B = Bz;
   gamma = g;
   return true;
