@@ -119,6 +119,27 @@ TEST(MomentumLoads, PartitionIsOneOnItsSolidZeroOnTheOthersAndHasTheRightGradien
   EXPECT_GT(phi0, 0.98);
 }
 
+TEST(MomentumLoads, BandLoadSplitsItsTorqueIntoThePressureAndViscousParts) {
+  // A circle takes only the viscous part (Solver::momentum_group_loads), so the two parts must
+  // be the moments of fp and fv about the solid's reference point, each on its own.
+  LoadSample s;
+  s.m = 4e-5;
+  s.rho = 1010;
+  s.area = 3.9e-8;
+  s.p_dyn = 37;
+  s.grad_v = Mat2{3, -2, 5, 1};
+  s.rate_p = {120, -340};
+  s.rate_v = {-15, 60};
+  s.grad_p_h = {0, -9810};
+  s.lever = {1.1e-3, -0.4e-3};
+  Vec2 fp, fv, torque;
+  band_load(s, 0.7, Vec2{-800, 2500}, 0.01, fp, fv, torque);
+  ASSERT_GT(std::fabs(cross(s.lever, fp)), 1e-12);
+  ASSERT_GT(std::fabs(cross(s.lever, fv)), 1e-14);
+  EXPECT_DOUBLE_EQ(torque.x, cross(s.lever, fp));
+  EXPECT_DOUBLE_EQ(torque.y, cross(s.lever, fv));
+}
+
 namespace {
 
 Case box_with_bodies(real d0, ForceModel force) {

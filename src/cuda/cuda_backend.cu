@@ -503,7 +503,7 @@ class CudaBackend final : public DeviceBackend {
   }
 
   void band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos, const std::vector<real>& group_level,
-                  std::vector<Vec2>& fp, std::vector<Vec2>& fv, std::vector<real>& torque) override {
+                  std::vector<Vec2>& fp, std::vector<Vec2>& fv, std::vector<Vec2>& torque) override {
     group_pos_.upload(group_pos);
     group_level_.upload(group_level);
     const LoadArrays a = device_load_arrays(scalars);
@@ -514,7 +514,7 @@ class CudaBackend final : public DeviceBackend {
     const BandEntry* band = band_.data();
     Vec2* out_fp = band_fp_.data();
     Vec2* out_fv = band_fv_.data();
-    real* out_t = band_torque_.data();
+    Vec2* out_t = band_torque_.data();
     each(0, ne, [=] __device__(std::size_t e) { band_entry_load(a, band[e], out_fp[e], out_fv[e], out_t[e]); });
     band_fp_.download(fp);
     band_fv_.download(fv);
@@ -715,7 +715,8 @@ class CudaBackend final : public DeviceBackend {
   // band momentum loads (numerics.force = momentum): the step's entries, per-entry loads
   DArray<BandEntry> band_;
   DArray<Vec2> group_pos_, band_fp_, band_fv_;
-  DArray<real> band_torque_, group_level_;
+  DArray<Vec2> band_torque_;
+  DArray<real> group_level_;
   DArray<GroupMotion> motions_;
   // open boundaries: the lines, and the buffer particles' fields set on the host
   DArray<OpenZone> zones_;

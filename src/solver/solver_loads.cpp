@@ -183,6 +183,9 @@ void Solver::build_load_band() {
       e.group = near[k].group;
       band_partition(near, count, k, reach, e.phi, e.grad_phi);
       e.area = area;
+      e.in_film = false;
+      for (int j = 0; j < count; ++j)
+        if (j != k && near[k].d + near[j].d < kFilmGap * prm_.h) e.in_film = true;
     }
   }
   // Counting sort by group (stable: particle order within a group), so that each group's sum
@@ -263,10 +266,18 @@ void Solver::momentum_group_loads() {
     Vec2 fp, fv;
     real torque = 0;
     smooth_pressure_load(a, k, fp, torque);
+    // A circle takes no torque from pressure about its centre (P r x n = 0 on its surface), and
+    // the band's pressure torque, exact in the continuum and resolved elsewhere, is not in a film
+    // between the circle and another surface thinner than about two spacings: P grad(phi) there is
+    // normal to the film, not to the circle, and nothing in the unresolved film cancels its moment
+    // (docs/method-notes.md, "Forces on solids"). So a circle takes only the viscous part of the
+    // torque of its entries in such a film.
+    const bool circle =
+        !g.is_wall && prm_.bodies[static_cast<std::size_t>(g.body)].shape.kind() == ShapeKind::Circle;
     for (std::size_t e = band_first_[k]; e < band_first_[k + 1]; ++e) {
       fp += band_fp_[e];
       fv += band_fv_[e];
-      torque += band_torque_[e];
+      torque += circle && band_[e].in_film ? band_torque_[e].y : band_torque_[e].x + band_torque_[e].y;
     }
     g.force_pressure = fp;
     g.force_viscous = fv;

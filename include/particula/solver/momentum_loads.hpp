@@ -76,7 +76,15 @@ struct BandEntry {
   real phi = 0;
   Vec2 grad_phi;
   real area = 0;
+  // the particle sits in a film between this solid and another thinner than kFilmGap h (the sum
+  // of its distances to the two): the band's pressure torque is not resolved there
+  bool in_film = false;
 };
+
+/// A film between two solid surfaces thinner than this many h holds at most about two fluid
+/// particles across: there the partition phi_B falls from 1 to 0 across the film within a
+/// spacing or two, and the moment of the band's pressure terms is not resolved.
+inline constexpr real kFilmGap = 2.0;
 
 /// Largest number of vertices of a cell in voronoi_cell_area (a square clipped by at most
 /// kVoronoiMaxVertices - 4 bisectors; a cell with more is left to the volume m / rho).
@@ -164,9 +172,11 @@ struct LoadSample {
 /// Load of fluid particle i on solid B, -[A_i grad(phi) . sigma_dyn + phi (m_i (a_i - f) +
 /// w_i grad P_h)] with sigma_dyn = -P_dyn I + mu (L + L^T), A_i the particle's area (its Voronoi
 /// cell, or w_i = m_i / rho_i), split into the pressure part (P_dyn, <grad P>, grad P_h) and the
-/// viscous part (tau, <lap V>), and its torque r_i x (both). The phi terms keep the volume
-/// w_i: they are the particle's own momentum rate, m_i (a_i - f) = w_i (-<grad P>_i + ...).
-PARTICULA_HD void band_load(const LoadSample& s, real phi, Vec2 grad_phi, real mu, Vec2& fp, Vec2& fv, real& torque) {
+/// viscous part (tau, <lap V>), and the torques r_i x (each part): torque.x of the pressure part,
+/// torque.y of the viscous part (a circle takes only the latter in a film: Solver::momentum_group_loads).
+/// The phi terms keep the volume w_i: they are the particle's own momentum rate,
+/// m_i (a_i - f) = w_i (-<grad P>_i + ...).
+PARTICULA_HD void band_load(const LoadSample& s, real phi, Vec2 grad_phi, real mu, Vec2& fp, Vec2& fv, Vec2& torque) {
   const real w = s.m / s.rho;
   const real A = s.area > 0 ? s.area : w;
   // tau = mu (L + L^T - tr(L) I): symmetric, and its divergence is mu lap V, the scheme's own
@@ -176,7 +186,7 @@ PARTICULA_HD void band_load(const LoadSample& s, real phi, Vec2 grad_phi, real m
   const Mat2 tau = mu * (s.grad_v + transpose(s.grad_v) - Mat2{div_v, 0, 0, div_v});
   fp = (A * s.p_dyn) * grad_phi - phi * (s.m * s.rate_p + w * s.grad_p_h);
   fv = -A * (grad_phi * tau) - (phi * s.m) * s.rate_v;
-  torque = cross(s.lever, fp + fv);
+  torque = Vec2{cross(s.lever, fp), cross(s.lever, fv)};
 }
 
 /// The per-particle fields a stage's load sum reads (plain pointers: host or device arrays).
@@ -216,8 +226,8 @@ PARTICULA_HD void band_entry_level(const LoadArrays& a, const BandEntry& e, real
   num = den * (a.p[i] - a.p0 + a.rho0 * a.c2) / smooth_pressure_shape(a, a.x[i]);
 }
 
-/// The load of band entry e (band_load for its particle and solid).
-PARTICULA_HD void band_entry_load(const LoadArrays& a, const BandEntry& e, Vec2& fp, Vec2& fv, real& torque) {
+/// The load of band entry e (band_load for its particle and solid; torque as in band_load).
+PARTICULA_HD void band_entry_load(const LoadArrays& a, const BandEntry& e, Vec2& fp, Vec2& fv, Vec2& torque) {
   const std::uint32_t i = e.particle;
   const real level = a.group_level[e.group] * smooth_pressure_shape(a, a.x[i]);  // P_h - p0 + rho0 c^2
   LoadSample s;

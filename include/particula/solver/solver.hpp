@@ -418,7 +418,8 @@ class Solver {
   std::vector<std::uint32_t> band_count_;
   std::vector<BandEntry> band_unsorted_;
   std::vector<Vec2> band_fp_, band_fv_, band_x_, group_pos_;
-  std::vector<real> band_torque_, group_level_;
+  std::vector<Vec2> band_torque_;  // per band entry: torque of its pressure part (x) and viscous part (y)
+  std::vector<real> group_level_;
   int band_cells_x_ = 1, band_cells_y_ = 1;
   std::vector<std::size_t> band_cell_start_;
   std::vector<std::uint32_t> band_cell_bodies_;
