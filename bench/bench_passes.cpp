@@ -95,10 +95,11 @@ void BM_WallPressure(benchmark::State& state) {  // items = boundary particles
   const auto& P = s.particles();
   std::vector<real> out(P.n_boundary);
   const real min_den = wall_pressure_min_den(1000, c.kernel.h);
+  const real void_distance = kVoidDistance * s.params().d0;
   for (auto _ : state) {
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < P.n_boundary; ++i)
-      wall_pressure_at(c, i, P.p.data(), P.rho.data(), P.normal[i], P.acc[i], Vec2{}, Vec2{}, min_den, out[i]);
+      wall_pressure_at(c, i, P.p.data(), P.rho.data(), P.normal[i], P.acc[i], Vec2{}, Vec2{}, min_den, void_distance, 0, out[i]);
     benchmark::DoNotOptimize(out.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(P.n_boundary));

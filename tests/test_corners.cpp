@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "case_builders.hpp"
 #include "particula/boundary/wall_pressure.hpp"
@@ -185,4 +186,63 @@ TEST(WallPressure, FluidOutOfReachInANarrowGapIsCountedApartFromCorners) {
   EXPECT_GT(resting.wall_pressure_extrapolated_far, 0);
   EXPECT_EQ(free.wall_pressure_extrapolated_far, 0);
   EXPECT_EQ(free.wall_pressure_extrapolated, 0);
+  // neither has a void: the gap under the resting cylinder is a contact's film, not room for fluid
+  EXPECT_EQ(resting.wall_pressure_void, 0);
+  EXPECT_EQ(free.wall_pressure_void, 0);
+}
+
+// A fixed cylinder in a box of fluid at rest under gravity, with the fluid within 2 d0 of its
+// surface taken away (a void, as a pore whose fluid was squeezed out leaves when it opens; its
+// far side within the support h = 2.6 d0 of the surface particles, where they can see it): its
+// surface particles take the void's pressure (guard_events.wall_pressure_void) and the fluid
+// around, at its hydrostatic pressure, flows in until every surface particle has fluid within
+// kVoidDistance d0 again. With the surface given the pressure of the fluid beyond the void (P.20
+// or the extrapolation, as before session 27) the void stayed open.
+TEST(WallPressure, ASurfaceFacingAVoidTakesTheVoidsPressureAndTheFluidFillsIt) {
+  const real d0 = 2e-4, R = 1e-3;
+  const Vec2 centre{0.004, 0.003};
+  Case c = cases::closed_box(0.008, 0.006, d0);
+  c.gravity = {0, -9.81};
+  c.gravity_in_fluid = true;
+  c.hydrostatic = true;
+  BodySpec b;
+  b.name = "held";
+  b.shape = BodyShape::Circle;
+  b.radius = R;
+  b.center = centre;
+  b.density = 2000;
+  b.motion = BodyMotion::Fixed;
+  c.bodies.push_back(b);
+  Scene sc = build_scene(c);
+  Particles& P = sc.particles;
+  std::size_t kept = P.n_boundary;
+  for (std::size_t i = P.n_boundary; i < P.size(); ++i) {
+    if (norm(P.x[i] - centre) < R + 2 * d0) continue;
+    P.x[kept] = P.x[i], P.v[kept] = P.v[i], P.rho[kept] = P.rho[i], P.p[kept] = P.p[i], P.m[kept] = P.m[i];
+    P.kind[kept] = P.kind[i], P.group[kept] = P.group[i], P.id[kept] = P.id[i];
+    ++kept;
+  }
+  ASSERT_LT(kept, P.size());
+  P.resize(kept);
+  Solver s(sc.params, sc.domain, sc.particles, sc.groups);
+  // the largest distance from a surface particle of the cylinder to its nearest fluid particle
+  auto widest_void = [&] {
+    const Particles& Q = s.particles();
+    real widest = 0;
+    for (std::size_t i = 0; i < Q.n_boundary; ++i) {
+      if (Q.kind[i] != Kind::Boundary || norm(Q.x[i] - centre) > 1.01 * R) continue;
+      real nearest = std::numeric_limits<real>::infinity();
+      for (std::size_t j = Q.n_boundary; j < Q.size(); ++j) nearest = std::min(nearest, norm(Q.x[j] - Q.x[i]));
+      widest = std::max(widest, nearest);
+    }
+    return widest / d0;
+  };
+  ASSERT_GT(widest_void(), 2.0);
+  ASSERT_FALSE(s.step().has_value());
+  EXPECT_GT(s.counters().wall_pressure_void, 0);
+  while (s.time() < 0.03) ASSERT_FALSE(s.step().has_value());
+  const real widest = widest_void();
+  std::printf("void round a cylinder: widest %.2f d0 at t = %.3f s, %lld surface particle-sweeps facing it\n", widest,
+              s.time(), static_cast<long long>(s.counters().wall_pressure_void));
+  EXPECT_LT(widest, kVoidDistance);
 }

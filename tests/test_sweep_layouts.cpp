@@ -116,7 +116,7 @@ Fields run_sweeps(SweepContext c, std::size_t slots, const Particles& P, const s
   for (std::size_t i = 0; i < P.n_boundary; ++i)
     if (P.kind[i] == Kind::Boundary)
       f.outcome[i] = wall_pressure_at(c, i, f.p.data(), f.rho.data(), P.normal[i], P.acc[i], s.nu * f.lapV[i], s.f,
-                                      wall_pressure_min_den(s.rho0, c.kernel.h), f.p_wall[i]);
+                                      wall_pressure_min_den(s.rho0, c.kernel.h), s.void_distance, s.p0, f.p_wall[i]);
   return f;
 }
 
@@ -151,6 +151,7 @@ void compare_layouts(const Case& cs, std::uint64_t seed, LayoutReport& rep) {
   s.f = {0, -9.81};
   s.rho0 = 1000;
   s.c = 1;
+  s.void_distance = kVoidDistance * sc.params.d0;
   s.single_layer = sc.params.single_layer;
 
   // The CPU list (counting-sort binning, CSR).

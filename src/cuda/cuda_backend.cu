@@ -142,7 +142,7 @@ __global__ void group_loads_kernel(const GroupRange* ranges, const Kind* kind, c
 
 enum Counter {
   kSingularB = 0, kSingularBhat, kWallKept, kWallExtrapolated, kWallExtrapolatedFar, kNormalFallback, kSurfacePushed,
-  kGapSqueezed, kIsolatedLeftOut, kSparseSupport,
+  kGapSqueezed, kIsolatedLeftOut, kSparseSupport, kWallVoid,
   kUnhealthy,
   kCounters
 };
@@ -409,14 +409,17 @@ class CudaBackend final : public DeviceBackend {
     real* p_new = p_new_.data();
     unsigned long long* counters = counters_.data();
     const real min_den = wall_pressure_min_den(s.rho0, c.kernel.h);
+    const real void_distance = s.void_distance;
     for (int sweep = 0; sweep < sweeps; ++sweep) {
       each(0, nb_, [=] __device__(std::size_t i) {
         p_new[i] = p[i];
         if (kind[i] != Kind::Boundary) return;
-        const WallPressureOutcome o = wall_pressure_at(c, i, p, rho, normal[i], acc[i], s.nu * lapV[i], s.f, min_den, p_new[i]);
+        const WallPressureOutcome o = wall_pressure_at(c, i, p, rho, normal[i], acc[i], s.nu * lapV[i], s.f, min_den,
+                                                       void_distance, s.p0, p_new[i]);
         if (o == WallPressureOutcome::Kept) atomicAdd(&counters[kWallKept], 1ull);
         if (o == WallPressureOutcome::Extrapolated) atomicAdd(&counters[kWallExtrapolated], 1ull);
         if (o == WallPressureOutcome::ExtrapolatedFar) atomicAdd(&counters[kWallExtrapolatedFar], 1ull);
+        if (o == WallPressureOutcome::Void) atomicAdd(&counters[kWallVoid], 1ull);
       });
       each(0, nb_, [=] __device__(std::size_t i) {
         if (kind[i] != Kind::Boundary) return;
@@ -681,6 +684,7 @@ class CudaBackend final : public DeviceBackend {
     cnt.gap_squeezed += static_cast<std::int64_t>(h[kGapSqueezed]);
     cnt.isolated_left_out += static_cast<std::int64_t>(h[kIsolatedLeftOut]);
     cnt.sparse_support += static_cast<std::int64_t>(h[kSparseSupport]);
+    cnt.wall_pressure_void += static_cast<std::int64_t>(h[kWallVoid]);
     zero_counters();
   }
 

@@ -82,7 +82,7 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
        {c.counters.singular_B, c.counters.singular_Bhat, c.counters.wall_pressure_kept,
         c.counters.wall_pressure_extrapolated, c.counters.normal_fallback, c.counters.surface_pushed,
         c.counters.gap_squeezed, c.counters.isolated_left_out, c.counters.open_fit_fallback,
-        c.counters.sparse_support})
+        c.counters.sparse_support, c.counters.wall_pressure_void})
     if (counter < 0) fail("negative guard counter");
   if (nb > n) fail("more boundary particles than particles");
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) fail("too many particles");

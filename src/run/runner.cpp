@@ -209,10 +209,10 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
       fmt::format("guard events: singular B {}, singular Bhat at fluid particles {}, wall pressure kept {}, "
                   "extrapolated where ill-conditioned (corners, contact wedges) {}, extrapolated in narrow "
                   "gaps {}, normal fallback {}, surface guard {} (closing gaps {}), isolated particles left "
-                  "out of P.20 {}, sparse supports bounded {}",
+                  "out of P.20 {}, sparse supports bounded {}, surfaces facing a void {}",
                   cnt.singular_B, cnt.singular_Bhat, cnt.wall_pressure_kept, cnt.wall_pressure_extrapolated,
                   cnt.wall_pressure_extrapolated_far, cnt.normal_fallback, cnt.surface_pushed,
-                  cnt.gap_squeezed, cnt.isolated_left_out, cnt.sparse_support));
+                  cnt.gap_squeezed, cnt.isolated_left_out, cnt.sparse_support, cnt.wall_pressure_void));
   if (!solver.open_flux().empty()) rep.say(open_boundary_log_line(solver));
   const char* compared = c.exact == ExactSolution::SpinUp ? "velocity" : "vx";
   if (particle_error)

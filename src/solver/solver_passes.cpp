@@ -194,20 +194,22 @@ void Solver::boundary_pressure() {
   const SweepContext c = sweep_context();
   p_new_.resize(nb);
   const real min_den = wall_pressure_min_den(prm_.rho0, prm_.h);
-  std::int64_t kept = 0, extrapolated = 0, far = 0;
+  const real void_distance = stage_params(dt_).void_distance;
+  std::int64_t kept = 0, extrapolated = 0, far = 0, facing_void = 0;
   for (int sweep = 0; sweep < prm_.wall_pressure_sweeps; ++sweep) {
-#pragma omp parallel for schedule(static) reduction(+ : kept, extrapolated, far)
+#pragma omp parallel for schedule(static) reduction(+ : kept, extrapolated, far, facing_void)
     for (std::size_t i = 0; i < nb; ++i) {
       p_new_[i] = P_.p[i];
       if (P_.kind[i] != Kind::Boundary) continue;
       const WallPressureOutcome o =
           wall_pressure_at(c, i, P_.p.data(), P_.rho.data(), P_.normal[i], P_.acc[i], prm_.nu * lapV_[i], f,
-                           min_den, p_new_[i]);
+                           min_den, void_distance, prm_.p0, p_new_[i]);
       // the tip of a wall continued through an open boundary's buffer is one-sided by design
       if (o != WallPressureOutcome::Solved && in_open_buffer(P_.x[i])) continue;
       kept += o == WallPressureOutcome::Kept ? 1 : 0;
       extrapolated += o == WallPressureOutcome::Extrapolated ? 1 : 0;
       far += o == WallPressureOutcome::ExtrapolatedFar ? 1 : 0;
+      facing_void += o == WallPressureOutcome::Void ? 1 : 0;
     }
     for (std::size_t i = 0; i < nb; ++i) {
       if (P_.kind[i] != Kind::Boundary) continue;
@@ -218,6 +220,7 @@ void Solver::boundary_pressure() {
   counters_.wall_pressure_kept += kept;
   counters_.wall_pressure_extrapolated += extrapolated;
   counters_.wall_pressure_extrapolated_far += far;
+  counters_.wall_pressure_void += facing_void;
   // Isolated fluid particles take their pressure from the surfaces around them (sweeps.hpp).
   const std::size_t n = isolated_.size() == P_.size() ? P_.size() : nb;
 #pragma omp parallel for schedule(static)

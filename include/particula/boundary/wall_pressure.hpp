@@ -47,8 +47,31 @@ PARTICULA_HD bool wall_pressure(const WallPressureSums& s, Vec2 a, Vec2 nu_lap_v
 /// is ill-conditioned (the fluid wraps round the particle: sharp convex corners, and the wedges
 /// beside two surfaces in contact); extrapolated because the fluid neighbours are too far from
 /// the surface to carry the normal derivative (a gap narrower than the kernel,
-/// wall_pressure_min_den); previous pressure kept.
-enum class WallPressureOutcome { Solved, Extrapolated, ExtrapolatedFar, Kept };
+/// wall_pressure_min_den); the void's pressure, no fluid within kVoidDistance (void_pressure_applies);
+/// previous pressure kept.
+enum class WallPressureOutcome { Solved, Extrapolated, ExtrapolatedFar, Void, Kept };
+
+/// A surface particle with no fluid particle within kVoidDistance d0, and no other solid's
+/// surface within twice that (so not in the film or the wedge of a contact, where no particle
+/// fits), faces a void: fluid the
+/// flow has left behind (a pore between bodies whose fluid was squeezed out and that opens
+/// again, the wake of a body thrown off a contact). The first row of fluid lies 0.5-0.8 d0 from
+/// a surface. Neither the renormalized pressure gradient (exact for the fluid's own linear
+/// field, blind to the empty side) nor the continuity equation (which only sees particles in
+/// the support) senses a void, and P.20 or the extrapolation gives the surface the pressure of
+/// the fluid beyond it, so a void stayed open: a body rose off its neighbours with nothing
+/// below it and spun up in the one-sided flow, and bodies closing on each other met the
+/// squeezed fluid's resistance but parted with none (docs/method-notes.md, "Surfaces facing a
+/// void").
+inline constexpr real kVoidDistance = 1.6;
+
+/// A void takes the equation of state's pressure at rest density, p0, where all the fluid in
+/// the support is at p0 or above, so that the fluid round the void is pushed into it. Where
+/// some of that fluid is in tension (p < p0: the wake of a body pulling away, the lee of a
+/// sharp corner) the surface keeps P.20: a void pressure that followed the fluid's lowest
+/// pressure down drew the nearest fluid particle onto the surface and emptied it (mixed_shapes
+/// stopped, session 26), and one at p0 would push that fluid away from the surface.
+PARTICULA_HD bool void_pressure_applies(real p0, real p_min_fluid) { return p_min_fluid >= p0; }
 
 /// P.20 is solved where it is well conditioned: its denominator at least this fraction of the
 /// sum of the magnitudes of its terms, den >= 0.5 sum_j |k_j|. Then P_i is a weighted mean of

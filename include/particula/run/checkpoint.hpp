@@ -33,7 +33,7 @@
 namespace particula {
 
 /// Bump when the layout or any field list below changes; older files are then refused.
-inline constexpr std::uint32_t kCheckpointVersion = 11;
+inline constexpr std::uint32_t kCheckpointVersion = 12;
 
 /// When an output stream ("bodies", "snapshots", "probe:<name>") was last written on its
 /// regular schedule. A resumed run drops rows after this time (the extra final-state rows of an
@@ -107,7 +107,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file);
 
 inline constexpr std::size_t kParticlesFields = 16;  // n_boundary, next_id + 14 arrays
 inline constexpr std::size_t kRigidGroupFields = 28;
-inline constexpr std::size_t kSolverCountersFields = 11;
+inline constexpr std::size_t kSolverCountersFields = 12;
 inline constexpr std::size_t kOpenFluxFields = 6;
 
 template <class Ar, class P>
@@ -177,6 +177,7 @@ void solver_counters_fields(Ar& ar, C& c) {
   ar(c.isolated_left_out);
   ar(c.open_fit_fallback);
   ar(c.sparse_support);
+  ar(c.wall_pressure_void);
 }
 
 template <class Ar, class F>

@@ -114,6 +114,7 @@ struct SolverCounters {
   std::int64_t isolated_left_out = 0;  // isolated fluid particle left out of P.20 (particle-steps)
   std::int64_t open_fit_fallback = 0;  // buffer particle whose mirrored fit was singular -> Shepard mean
   std::int64_t sparse_support = 0;     // fluid particle's gradient moment bounded below (particle-steps)
+  std::int64_t wall_pressure_void = 0;  // surface particle with no fluid within kVoidDistance -> the void's pressure
 };
 
 /// The counters by the names summary.json and the Python module give them (one list for both).
@@ -128,7 +129,8 @@ inline std::vector<std::pair<const char*, std::int64_t>> guard_events(const Solv
           {"gap_squeezed", c.gap_squeezed},
           {"isolated_left_out", c.isolated_left_out},
           {"open_fit_fallback", c.open_fit_fallback},
-          {"sparse_support", c.sparse_support}};
+          {"sparse_support", c.sparse_support},
+          {"wall_pressure_void", c.wall_pressure_void}};
 }
 
 /// Wall-clock seconds spent in each phase of the time step, summed over the steps taken (the

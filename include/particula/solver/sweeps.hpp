@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #include "particula/boundary/surface_guard.hpp"
 #include "particula/boundary/wall_pressure.hpp"
@@ -270,19 +271,37 @@ PARTICULA_HD bool surface_across_a_gap(const SweepContext& c, std::size_t i, std
 /// kWallPressureMinConditioning), or its fluid neighbours are too far from the surface to carry
 /// the normal derivative (den below min_den = 1 / (rho0 h), see wall_pressure_well_conditioned),
 /// the pressure is extrapolated from the fluid neighbours with the
-/// same momentum balance. Kept: p_out untouched (no fluid neighbour).
+/// same momentum balance. With no fluid within void_distance (kVoidDistance d0; 0: no void
+/// test), the surface faces a void and takes its pressure, p0, where no fluid in its support is
+/// in tension (void_pressure_applies). Kept: p_out untouched (no fluid neighbour at all).
 PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContext& c, std::size_t i, const real* p, const real* rho,
                                                   Vec2 n, Vec2 a, Vec2 nu_lap_v, Vec2 f, real min_den,
-                                                  real& p_out) {
+                                                  real void_distance, real p0, real& p_out) {
   WallPressureSums s;
   const real rhoi = rho[i];
   const std::size_t b = c.first_pair(i), st = c.stride;
   const std::uint32_t np = c.pair_count(i);
+  constexpr real inf = std::numeric_limits<real>::infinity();
+  real nearest_fluid2 = inf, nearest_solid2 = inf, p_min_fluid = inf;
   for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
     const std::uint32_t j = c.j[k];
+    const real r2 = norm2(c.domain.separation(c.x[j], c.x[i]));
+    if (j < c.nb && c.kind[j] == Kind::Boundary && c.group && c.group[j] != c.group[i])
+      nearest_solid2 = r2 < nearest_solid2 ? r2 : nearest_solid2;
     if (surface_across_a_gap(c, i, j)) continue;
     if (c.isolated && j >= c.nb && c.isolated[j]) continue;  // an isolated particle (surface_guard.hpp)
     wall_pressure_pair(s, c.grad_w[k], n, p[j], 0.5 * (rhoi + rho[j]), j >= c.nb);
+    if (j < c.nb) continue;
+    nearest_fluid2 = r2 < nearest_fluid2 ? r2 : nearest_fluid2;
+    p_min_fluid = p[j] < p_min_fluid ? p[j] : p_min_fluid;
+  }
+  // room for a row of fluid in front of the surface (no other solid within void_distance + d0:
+  // not the film or wedge of a contact, where no particle fits) and none there
+  const real room = void_distance * (1 + 1 / kVoidDistance);
+  if (void_distance > 0 && s.fluid_neighbors > 0 && nearest_fluid2 > void_distance * void_distance &&
+      nearest_solid2 > room * room && void_pressure_applies(p0, p_min_fluid)) {
+    p_out = p0;
+    return WallPressureOutcome::Void;
   }
   const bool conditioned = wall_pressure_well_conditioned(s);
   if (conditioned && s.den >= min_den && wall_pressure(s, a, nu_lap_v, f, n, p_out)) return WallPressureOutcome::Solved;
@@ -335,6 +354,7 @@ struct StageParams {
   Vec2 f;              // body force, plus gravity when it is kept in the fluid
   real rho0 = 1000, c = 0, p0 = 0;
   real kappa = 0;      // coefficient of the velocity odd-even damping (m^2/s), see odd_even_velocity_at
+  real void_distance = 0;  // kVoidDistance d0: a surface particle with no fluid this near faces a void (0: none)
   bool single_layer = true;
 };
 
