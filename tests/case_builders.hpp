@@ -1,4 +1,5 @@
-// Programmatic cases for tests (no case file involved): a closed box and a periodic channel.
+// Programmatic cases for tests (no case file involved): a closed box, a periodic channel, and a
+// circular body to put in them.
 #pragma once
 
 #include "particula/case/case.hpp"
@@ -45,6 +46,18 @@ inline Case startup_channel(int n_across, real v_top, real force) {
   c.shifting_beta = 0.01;
   c.walls = {{"bottom", {0, 0}, {8 * d0, 0}, {}}, {"top", {8 * d0, L}, {0, L}, {v_top, 0}}};
   return c;
+}
+
+/// A circular body of density 2000 (the robustness cases' cylinders).
+inline BodySpec circle_body(const char* name, Vec2 center, real radius, BodyMotion motion = BodyMotion::Free) {
+  BodySpec b;
+  b.name = name;
+  b.shape = BodyShape::Circle;
+  b.center = center;
+  b.radius = radius;
+  b.density = 2000;
+  b.motion = motion;
+  return b;
 }
 
 }  // namespace particula::cases

@@ -166,14 +166,7 @@ TEST(WallPressure, FluidOutOfReachInANarrowGapIsCountedApartFromCorners) {
   auto run = [](real gap_d0) {
     const real d0 = 2e-4, R = 1e-3;
     Case c = cases::closed_box(0.008, 0.006, d0);
-    BodySpec b;
-    b.name = "resting";
-    b.shape = BodyShape::Circle;
-    b.radius = R;
-    b.center = {0.004, R + gap_d0 * d0};
-    b.density = 2000;
-    b.motion = BodyMotion::Fixed;
-    c.bodies.push_back(b);
+    c.bodies.push_back(cases::circle_body("resting", {0.004, R + gap_d0 * d0}, R, BodyMotion::Fixed));
     Scene sc = build_scene(c);
     Solver s(sc.params, sc.domain, sc.particles, sc.groups);
     for (int k = 0; k < 20; ++k) EXPECT_FALSE(s.step().has_value());
@@ -205,14 +198,7 @@ TEST(WallPressure, ASurfaceFacingAVoidTakesTheVoidsPressureAndTheFluidFillsIt) {
   c.gravity = {0, -9.81};
   c.gravity_in_fluid = true;
   c.hydrostatic = true;
-  BodySpec b;
-  b.name = "held";
-  b.shape = BodyShape::Circle;
-  b.radius = R;
-  b.center = centre;
-  b.density = 2000;
-  b.motion = BodyMotion::Fixed;
-  c.bodies.push_back(b);
+  c.bodies.push_back(cases::circle_body("held", centre, R, BodyMotion::Fixed));
   Scene sc = build_scene(c);
   Particles& P = sc.particles;
   std::size_t kept = P.n_boundary;

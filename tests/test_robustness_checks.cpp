@@ -36,14 +36,7 @@ namespace {
 const fs::path kSource = PARTICULA_SOURCE_DIR;
 
 BodySpec circle(Vec2 center, real radius, BodyMotion motion = BodyMotion::Free) {
-  BodySpec b;
-  b.name = "c";
-  b.shape = BodyShape::Circle;
-  b.center = center;
-  b.radius = radius;
-  b.density = 2000;
-  b.motion = motion;
-  return b;
+  return cases::circle_body("c", center, radius, motion);
 }
 
 /// A 1 cm box at d0 = 1e-4 with two circles of radius 1 mm.

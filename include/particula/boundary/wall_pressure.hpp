@@ -52,10 +52,10 @@ PARTICULA_HD bool wall_pressure(const WallPressureSums& s, Vec2 a, Vec2 nu_lap_v
 enum class WallPressureOutcome { Solved, Extrapolated, ExtrapolatedFar, Void, Kept };
 
 /// A surface particle with no fluid particle within kVoidDistance d0, and no other solid's
-/// surface within twice that (so not in the film or the wedge of a contact, where no particle
-/// fits), faces a void: fluid the
-/// flow has left behind (a pore between bodies whose fluid was squeezed out and that opens
-/// again, the wake of a body thrown off a contact). The first row of fluid lies 0.5-0.8 d0 from
+/// surface within kVoidDistance + 1 d0 = 2.6 d0 (room for a row of fluid: not the film or the
+/// wedge of a contact, where no particle fits), faces a void: fluid the flow has left behind (a
+/// pore between bodies whose fluid was squeezed out and that opens again, the wake of a body
+/// thrown off a contact). The first row of fluid lies 0.5-0.8 d0 from
 /// a surface. Neither the renormalized pressure gradient (exact for the fluid's own linear
 /// field, blind to the empty side) nor the continuity equation (which only sees particles in
 /// the support) senses a void, and P.20 or the extrapolation gives the surface the pressure of
