@@ -13,7 +13,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 
 #include "particula/boundary/surface_guard.hpp"
 #include "particula/boundary/wall_pressure.hpp"
@@ -281,7 +280,8 @@ PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContext& c, std::si
   const real rhoi = rho[i];
   const std::size_t b = c.first_pair(i), st = c.stride;
   const std::uint32_t np = c.pair_count(i);
-  constexpr real inf = std::numeric_limits<real>::infinity();
+  // "none yet" (1e300, as surface_guard.hpp: std::numeric_limits is host-only under nvcc)
+  constexpr real inf = 1e300;
   real nearest_fluid2 = inf, nearest_solid2 = inf, p_min_fluid = inf;
   for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
     const std::uint32_t j = c.j[k];
