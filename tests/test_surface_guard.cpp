@@ -1,6 +1,7 @@
 // The surface guard (boundary/surface_guard.hpp): fluid particles never cross a surface, a
 // closing gap carries its particle, a gap below two particle spacings is an unresolved film,
-// shifting never moves a particle into a close surface; and
+// shifting never moves a particle into a close surface, an isolated particle is left out of a
+// surface particle's Laplacian (P.20's viscous term); and
 // the odd-even velocity damping (sweeps.hpp odd_even_velocity_at): zero on linear fields,
 // dissipative on a checkerboard. The long hydrostatic box that the damping makes stable is in
 // tests/test_flows.cpp.
@@ -8,12 +9,15 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "case_builders.hpp"
 #include "particula/boundary/surface_guard.hpp"
 #include "particula/scene/scene.hpp"
 #include "particula/solver/solver.hpp"
+#include "particula/solver/sweeps.hpp"
 
 using namespace particula;
 
@@ -205,4 +209,40 @@ TEST(OddEvenDamping, DampsACheckerboardMode) {
   }
   // d . v < 0: the term removes kinetic energy from the mode, at a rate of order 1/d0^2.
   EXPECT_LT(power / scale, -1.0 / (d0 * d0));
+}
+
+// A surface particle's viscous Laplacian, P.20's nu <lap V> term, leaves out isolated fluid
+// particles, as P.20's pressure sums do; a fluid particle's own Laplacian keeps them. One surface
+// particle (0) with an isolated fluid neighbour (1) moving into it and a resolved one (2) at rest;
+// the pair weights are set by hand, so the sums can be read off.
+TEST(IsolatedParticles, LeftOutOfASurfaceParticlesLaplacianOnly) {
+  const std::vector<Vec2> x{{0, 0}, {0, 0.4}, {0.5, 1}};
+  const std::vector<Vec2> v{{0, 0}, {0, -1}, {0, 0}};
+  const std::vector<Kind> kind{Kind::Boundary, Kind::Fluid, Kind::Fluid};
+  const std::vector<std::int32_t> group{0, -1, -1};
+  const std::vector<std::uint8_t> isolated{0, 1, 0};
+  // CSR pairs: 0 -> {1, 2}; 1 -> {0, 2}; 2 -> {0, 1}
+  const std::vector<std::uint32_t> start{0, 2, 4, 6}, j{1, 2, 0, 2, 0, 1};
+  const std::vector<Vec2> grad_w(6, Vec2{});
+  const std::vector<real> lap_w{3, 5, 3, 7, 5, 7};
+  SweepContext c;
+  c.domain = kOpen;
+  c.start = start.data();
+  c.j = j.data();
+  c.n = 3;
+  c.nb = 1;
+  c.x = x.data();
+  c.kind = kind.data();
+  c.group = group.data();
+  c.grad_w = grad_w.data();
+  c.lap_w = lap_w.data();
+  Mat2 L;
+  Vec2 lap;
+  velocity_derivatives_at(c, 0, v.data(), L, lap);  // no flags: the isolated particle counts
+  EXPECT_DOUBLE_EQ(lap.y, 3.0);  // sum lap_w (V_i - V_j) = 3 (0 - (-1))
+  c.isolated = isolated.data();
+  velocity_derivatives_at(c, 0, v.data(), L, lap);
+  EXPECT_DOUBLE_EQ(lap.y, 0.0);  // particle 1 left out, particle 2 at rest
+  velocity_derivatives_at(c, 2, v.data(), L, lap);
+  EXPECT_DOUBLE_EQ(lap.y, 7.0);  // a fluid particle keeps it: 7 (V_2 - V_1) = 7 (0 - (-1))
 }

@@ -205,19 +205,27 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
 
 /// Velocity gradient L_i = <grad V>_i (L_ab = d_a V_b; renormalized, P.7, and at fluid particles
 /// also corrected to zeroth order with numerics.gradient = "consistent") and the viscous
-/// Laplacian <lap V>_i (P.10 or P.8, one pair sum: geometry_at). Zero for dummies.
+/// Laplacian <lap V>_i (P.10 or P.8, one pair sum: geometry_at). Zero for dummies. At a surface
+/// particle the Laplacian, which P.20 turns into the wall's normal pressure gradient, leaves out
+/// isolated fluid particles (surface_guard.hpp, `isolated`), as P.20's pressure sums do: a lone
+/// particle 0.4 d0 off the surface moving 1 cm/s against it gave nu lap V of ~50 m/s^2 there, a
+/// surface pressure of -2.9 Pa (a thousand times the flow's viscous stress), whose gradient drove
+/// the particle faster still (docs/method-notes.md, "Isolated particles").
 PARTICULA_HD void velocity_derivatives_at(const SweepContext& c, std::size_t i, const Vec2* v, Mat2& L, Vec2& lap) {
   L = Mat2{};
   lap = Vec2{};
   if (c.kind[i] == Kind::Dummy) return;
   const Vec2 vi = v[i];
+  const bool surface = i < c.nb && c.isolated;
   Vec2 a;
   const std::size_t b = c.first_pair(i), st = c.stride;
   const std::uint32_t np = c.pair_count(i);
   for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
-    const Vec2 dv = v[c.j[k]] - vi;  // V_j - V_i
+    const std::uint32_t j = c.j[k];
+    const Vec2 dv = v[j] - vi;  // V_j - V_i
     L += vector_gradient_pair(c.grad_w[k], dv);
-    a -= c.lap_w[k] * dv;            // lap_w (V_i - V_j)
+    if (surface && j >= c.nb && c.isolated[j]) continue;
+    a -= c.lap_w[k] * dv;  // lap_w (V_i - V_j)
   }
   lap = a;
 }
