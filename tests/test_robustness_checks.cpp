@@ -109,7 +109,7 @@ TEST(RobustnessChecks, KineticEnergyDecayAndRestingBodies) {
   write_bodies(dir, 2, 0.01, 1, settle(0.1, 0.5e-4));
   for (const auto& k : check_kinetic_energy_decay(dir, c, 0.02))
     EXPECT_TRUE(k.pass) << k.quantity << ": " << k.shown;
-  for (const auto& k : check_bodies_touching(dir, c, 1.0))
+  for (const auto& k : check_bodies_touching(dir, c, 1e-4))
     EXPECT_TRUE(k.pass) << k.quantity << ": " << k.shown;
   // Low in the last row but not at rest: the mean over the last 0.1 s is what counts.
   write_bodies(dir, 2, 0.01, 1, [&](double t, int b) {
@@ -122,9 +122,17 @@ TEST(RobustnessChecks, KineticEnergyDecayAndRestingBodies) {
   EXPECT_NEAR(stirred[0].value, 10.0 / 11.0 * 0.16, 0.03) << stirred[0].shown;
   write_bodies(dir, 2, 0.01, 1, settle(0.5, 3e-4));  // still moving, and hovering 3 d0 above the floor
   EXPECT_FALSE(check_kinetic_energy_decay(dir, c, 0.02)[0].pass);
-  const auto apart = check_bodies_touching(dir, c, 1.0);
+  const auto apart = check_bodies_touching(dir, c, 1e-4);
   EXPECT_FALSE(apart[0].pass) << apart[0].shown;
   EXPECT_EQ(apart[0].value, 0);
+  // The threshold is a distance: at half the spacing a body 56 um off the floor (1.12 d0) rests,
+  // one 0.15 mm off does not.
+  Case fine = c;
+  fine.d0 = 5e-5;
+  write_bodies(dir, 2, 0.01, 1, settle(0.1, 0.56e-4));
+  EXPECT_TRUE(check_bodies_touching(dir, fine, 1e-4)[0].pass);
+  write_bodies(dir, 2, 0.01, 1, settle(0.1, 1.5e-4));
+  EXPECT_FALSE(check_bodies_touching(dir, fine, 1e-4)[0].pass);
 }
 
 TEST(RobustnessChecks, ReboundAgainstTheRestitutionCoefficient) {

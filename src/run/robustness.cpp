@@ -351,7 +351,7 @@ std::vector<ValidationCheck> check_kinetic_energy_decay(const fs::path& run_dir,
       "0 (at rest)", fmt::format("< {}", max_fraction), frac < max_fraction)};
 }
 
-std::vector<ValidationCheck> check_bodies_touching(const fs::path& run_dir, const Case& c, double max_gap) {
+std::vector<ValidationCheck> check_bodies_touching(const fs::path& run_dir, const Case& c, double max_gap_m) {
   const std::vector<BodyTrack> tracks = tracks_or_throw(run_dir, c);
   const BodyGeometry g(c);
   const std::size_t k = common_rows(tracks) - 1, n = c.bodies.size();
@@ -369,13 +369,14 @@ std::vector<ValidationCheck> check_bodies_touching(const fs::path& run_dir, cons
         nearest = std::min(nearest, gap_between(c, g, a, pa, tracks[a].angle[k], b,
                                                 {tracks[b].x[k], tracks[b].y[k]}, tracks[b].angle[k]));
     widest = std::max(widest, nearest / c.d0);
-    if (nearest > max_gap * c.d0) ++apart;
+    if (nearest > max_gap_m) ++apart;
   }
   return {make_check(
       fmt::format("free bodies resting on a wall or another body at t = {:.4g} s", tracks[0].t[k]),
       static_cast<double>(free - apart),
-      fmt::format("{} of {} (largest gap to the nearest solid {:.2f} d0)", free - apart, free, widest), "all",
-      fmt::format("gap <= {} d0", max_gap), apart == 0)};
+      fmt::format("{} of {} (largest gap to the nearest solid {:.2f} d0 = {:.3g} mm)", free - apart, free, widest,
+                  widest * c.d0 * 1e3), "all",
+      fmt::format("gap <= {:.3g} mm", max_gap_m * 1e3), apart == 0)};
 }
 
 std::vector<ValidationCheck> check_rebound(const fs::path& run_dir, const Case& c, std::size_t body,
