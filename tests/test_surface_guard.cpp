@@ -1,10 +1,10 @@
 // The surface guard (boundary/surface_guard.hpp): fluid particles never cross a surface, a
 // closing gap carries its particle, a gap below two particle spacings is an unresolved film,
 // shifting never moves a particle into a close surface, an isolated particle is left out of a
-// surface particle's Laplacian (P.20's viscous term); and
-// the odd-even velocity damping (sweeps.hpp odd_even_velocity_at): zero on linear fields,
-// dissipative on a checkerboard. The long hydrostatic box that the damping makes stable is in
-// tests/test_flows.cpp.
+// surface particle's Laplacian (P.20's viscous term), a film particle's Rhie-Chow bracket reads
+// its fluid neighbours only; and the odd-even velocity damping (sweeps.hpp odd_even_velocity_at):
+// zero on linear fields, dissipative on a checkerboard. The long hydrostatic box that the damping
+// makes stable is in tests/test_flows.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -211,31 +211,45 @@ TEST(OddEvenDamping, DampsACheckerboardMode) {
   EXPECT_LT(power / scale, -1.0 / (d0 * d0));
 }
 
+namespace {
+
+/// Surface particle 0 and fluid particles 1 and 2, every pair neighbours (CSR: 0 -> {1, 2};
+/// 1 -> {0, 2}; 2 -> {0, 1}), with the pair weights given.
+struct ThreeParticles {
+  std::vector<Vec2> x;
+  std::vector<Vec2> grad_w;
+  std::vector<real> lap_w;
+  std::vector<Kind> kind{Kind::Boundary, Kind::Fluid, Kind::Fluid};
+  std::vector<std::int32_t> group{0, -1, -1};
+  std::vector<std::uint32_t> start{0, 2, 4, 6}, j{1, 2, 0, 2, 0, 1};
+
+  SweepContext context() const {
+    SweepContext c;
+    c.domain = kOpen;
+    c.start = start.data();
+    c.j = j.data();
+    c.n = 3;
+    c.nb = 1;
+    c.x = x.data();
+    c.kind = kind.data();
+    c.group = group.data();
+    c.grad_w = grad_w.data();
+    c.lap_w = lap_w.data();
+    return c;
+  }
+};
+
+}  // namespace
+
 // A surface particle's viscous Laplacian, P.20's nu <lap V> term, leaves out isolated fluid
 // particles, as P.20's pressure sums do; a fluid particle's own Laplacian keeps them. One surface
 // particle (0) with an isolated fluid neighbour (1) moving into it and a resolved one (2) at rest;
 // the pair weights are set by hand, so the sums can be read off.
 TEST(IsolatedParticles, LeftOutOfASurfaceParticlesLaplacianOnly) {
-  const std::vector<Vec2> x{{0, 0}, {0, 0.4}, {0.5, 1}};
+  const ThreeParticles three{{{0, 0}, {0, 0.4}, {0.5, 1}}, std::vector<Vec2>(6, Vec2{}), {3, 5, 3, 7, 5, 7}};
   const std::vector<Vec2> v{{0, 0}, {0, -1}, {0, 0}};
-  const std::vector<Kind> kind{Kind::Boundary, Kind::Fluid, Kind::Fluid};
-  const std::vector<std::int32_t> group{0, -1, -1};
   const std::vector<std::uint8_t> isolated{0, 1, 0};
-  // CSR pairs: 0 -> {1, 2}; 1 -> {0, 2}; 2 -> {0, 1}
-  const std::vector<std::uint32_t> start{0, 2, 4, 6}, j{1, 2, 0, 2, 0, 1};
-  const std::vector<Vec2> grad_w(6, Vec2{});
-  const std::vector<real> lap_w{3, 5, 3, 7, 5, 7};
-  SweepContext c;
-  c.domain = kOpen;
-  c.start = start.data();
-  c.j = j.data();
-  c.n = 3;
-  c.nb = 1;
-  c.x = x.data();
-  c.kind = kind.data();
-  c.group = group.data();
-  c.grad_w = grad_w.data();
-  c.lap_w = lap_w.data();
+  SweepContext c = three.context();
   Mat2 L;
   Vec2 lap;
   velocity_derivatives_at(c, 0, v.data(), L, lap);  // no flags: the isolated particle counts
@@ -245,4 +259,46 @@ TEST(IsolatedParticles, LeftOutOfASurfaceParticlesLaplacianOnly) {
   EXPECT_DOUBLE_EQ(lap.y, 0.0);  // particle 1 left out, particle 2 at rest
   velocity_derivatives_at(c, 2, v.data(), L, lap);
   EXPECT_DOUBLE_EQ(lap.y, 7.0);  // a fluid particle keeps it: 7 (V_2 - V_1) = 7 (0 - (-1))
+}
+
+TEST(UnresolvedFilms, AFilmParticleRelaxesToItsFluidNeighboursNotToTheSurfaces) {
+  // surface particle 0 and fluid particle 2 around fluid particle 1, which sits in a film
+  ThreeParticles three{{{0, 0}, {0, 0.4}, {1, 0.4}},
+                       {{0, 1}, {1, 1}, {0, -1}, {1, 0}, {-1, -1}, {-1, 0}},
+                       {-3, -5, -3, -7, -5, -7}};
+  const std::vector<real> vol{1, 1, 1}, rho{1000, 1000, 1000};
+  const std::vector<Vec2> G{{0, 2}, {0, 0}, {1, 0}}, lap_v(3, Vec2{}), v_start(3, Vec2{});
+  const std::vector<Mat2> grad_v(3, Mat2{});
+  SweepContext c = three.context();
+  c.vol = vol.data();
+  c.kernel = WendlandC2(2.0);
+  StageParams s;
+  s.dt = s.g_dt = 0.01;
+  s.rho0 = 1000;
+  s.c = 10;  // tau = h / c = 0.2 s
+  const auto bracket = [&](real p_surface) {
+    const std::vector<real> p{p_surface, 0, 10};
+    std::vector<real> rc(3, 0);
+    std::vector<Vec2> v(3);
+    rhie_chow_and_momentum_at(c, 1, p.data(), rho.data(), G.data(), grad_v.data(), lap_v.data(),
+                              v_start.data(), s, rc.data(), v.data());
+    return rc[1];
+  };
+  // no film: the paper's bracket, surface included:
+  // div_g = (0,-1).(G0 - G1) + (1,0).(G2 - G1) = -2 + 1; lap_p = (-3 (0 - P0) - 7 (0 - 10)) / 1000
+  const real paper = -1 - (-3 * 80 + 70) / 1000.0;
+  EXPECT_NEAR(bracket(-80), paper, 1e-12);
+  // a film particle (fraction 1) relaxes to its fluid neighbour's pressure, 10 Pa, i.e. to
+  // rho = 1000.1, over tau: -rho G dt bracket = 0.1 / 0.2; the surface's P drops out
+  std::vector<real> film{0, 1, 0};
+  c.film = film.data();
+  EXPECT_NEAR(bracket(-80), -0.1 / 0.2 / (1000 * 0.01), 1e-12);
+  EXPECT_DOUBLE_EQ(bracket(-80), bracket(+500));
+  EXPECT_NEAR(continuity_rate(1000, 0, s.g_dt, bracket(-80)), 0.1 / 0.2, 1e-12);
+  film[1] = 0.5;  // half way: half of each
+  EXPECT_NEAR(bracket(-80), 0.5 * paper + 0.5 * (-0.05), 1e-12);
+  // no faster than one step: with tau below dt the particle lands on the target in one step
+  s.c = 1000;
+  film[1] = 1;
+  EXPECT_NEAR(continuity_rate(1000, 0, s.g_dt, bracket(-80)) * s.dt, (1000 + 10 / 1e6) - 1000, 1e-12);
 }

@@ -326,6 +326,28 @@ PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContext& c, std::si
   return conditioned && s.den < min_den ? WallPressureOutcome::ExtrapolatedFar : WallPressureOutcome::Extrapolated;
 }
 
+/// The Shepard mean sum_j w_j W_ij P_j / sum_j w_j W_ij of the pressures of particle i's surface
+/// neighbours (`surfaces`) or of its fluid neighbours (not `surfaces`; isolated ones left out).
+/// Returns false (p_out untouched) with no such neighbour in the support.
+PARTICULA_HD bool shepard_pressure_at(const SweepContext& c, std::size_t i, const real* p, bool surfaces,
+                                      real& p_out) {
+  real sw = 0, swp = 0;
+  const Vec2 xi = c.x[i];
+  const std::size_t b = c.first_pair(i), st = c.stride;
+  const std::uint32_t np = c.pair_count(i);
+  for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
+    const std::uint32_t j = c.j[k];
+    const bool surface = j < c.nb && c.kind[j] == Kind::Boundary;
+    if (surface != surfaces || (j < c.nb && !surface) || (!surfaces && c.isolated && c.isolated[j])) continue;
+    const real w = c.vol[j] * c.kernel.W(norm(c.domain.separation(c.x[j], xi)));
+    sw += w;
+    swp += w * p[j];
+  }
+  if (!(sw > 0)) return false;
+  p_out = swp / sw;
+  return true;
+}
+
 /// Pressure of an isolated fluid particle (surface_guard.hpp, `isolated`; docs/method-notes.md,
 /// "Isolated particles"): the Shepard mean sum_j w_j W_ij P_j / sum_j w_j W_ij over the surface
 /// particles in its support, whose P.20 pressures come from the resolved fluid around them (an
@@ -336,20 +358,7 @@ PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContext& c, std::si
 /// its pressure taken from the surfaces, the particle is carried by the local pressure field and
 /// offers no spurious cushion. Returns false (p_out untouched) with no surface particle in support.
 PARTICULA_HD bool isolated_pressure_at(const SweepContext& c, std::size_t i, const real* p, real& p_out) {
-  real sw = 0, swp = 0;
-  const Vec2 xi = c.x[i];
-  const std::size_t b = c.first_pair(i), st = c.stride;
-  const std::uint32_t np = c.pair_count(i);
-  for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
-    const std::uint32_t j = c.j[k];
-    if (j >= c.nb || c.kind[j] != Kind::Boundary) continue;
-    const real w = c.vol[j] * c.kernel.W(norm(c.domain.separation(c.x[j], xi)));
-    sw += w;
-    swp += w * p[j];
-  }
-  if (!(sw > 0)) return false;
-  p_out = swp / sw;
-  return true;
+  return shepard_pressure_at(c, i, p, true, p_out);
 }
 
 // ---- pointwise updates of one particle ------------------------------------------------------
@@ -476,12 +485,33 @@ PARTICULA_HD Vec2 odd_even_velocity_at(const SweepContext& c, std::size_t i, con
   return lap_v - wide;
 }
 
-/// Rhie-Chow bracket of the current P at particle i, then (fluid) the momentum stage from
-/// v_start. Race-free in one loop: it reads P, rho, G, grad V of the neighbours and writes only V_i.
+/// The bracket that makes a particle in an unresolved film relax its density to that of the
+/// Shepard mean p_fluid of its fluid neighbours' pressures over the time tau = h / c that sound
+/// takes to cross the kernel support (at least one step):
+///   -rho_i G dt bracket = (rho(p_fluid) - rho_i) / tau.
+/// The paper's bracket at a film particle also reads the surfaces' P.20 pressures, which are read
+/// from that very particle with weights that may be negative near a corner: the loop drained a
+/// resting film between two polygons to 0.5 rho0 (mixed_shapes at d0 = 5e-5; docs/method-notes.md,
+/// "Unresolved films"). The relaxation has positive weights and a rate of at most 1 per step, so
+/// it cannot amplify.
+PARTICULA_HD real film_relaxation_bracket(real rho_i, real p_fluid, const StageParams& s, real h) {
+  const real tau = s.c > 0 && h / s.c > s.dt ? h / s.c : s.dt;
+  const real rho_target = density_from_pressure(p_fluid, s.rho0, s.c, s.p0);
+  return -(rho_target - rho_i) / (tau * rho_i * s.g_dt);
+}
+
+/// Rhie-Chow bracket of the current P at particle i (in an unresolved film blended with the
+/// relaxation to its fluid neighbours, film_relaxation_bracket), then (fluid) the momentum stage
+/// from v_start. Race-free in one loop: it reads P, rho, G, grad V of the neighbours and writes
+/// only V_i.
 PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContext& c, std::size_t i, const real* p, const real* rho,
                                             const Vec2* G, const Mat2* grad_v, const Vec2* lap_v,
                                             const Vec2* v_start, const StageParams& s, real* rc, Vec2* v) {
   rc[i] = rhie_chow_at(c, i, p, rho, G);
+  const real film = c.film != nullptr ? c.film[i] : real(0);
+  real p_fluid = 0;
+  if (film > 0 && s.g_dt > 0 && shepard_pressure_at(c, i, p, false, p_fluid))
+    rc[i] = (1 - film) * rc[i] + film * film_relaxation_bracket(rho[i], p_fluid, s, c.kernel.h);
   if (c.kind[i] != Kind::Fluid) return;  // surfaces move with their solid; buffers are set by their boundary
   v[i] = momentum_stage(v_start[i], G[i], lap_v[i], s);
   if (s.kappa > 0) v[i] += (s.dt * s.kappa) * odd_even_velocity_at(c, i, grad_v, lap_v[i]);
@@ -497,9 +527,9 @@ PARTICULA_HD real film_fraction_at(const SweepContext& c, std::size_t i, real fi
 
 /// Velocity derivatives of the new V at particle i, then its continuity stage from rho_start.
 /// In an unresolved film the volume change -rho div V is left out in proportion to the film
-/// fraction c.film[i] (the Rhie-Chow term stays: it relaxes the particle's pressure to its
-/// neighbours'). The fraction is read from an array: looked up here, per stage, it cost 12 % of
-/// the step (docs/performance.md).
+/// fraction c.film[i] (the Rhie-Chow term stays, blended with a relaxation to the fluid
+/// neighbours' pressure: rhie_chow_and_momentum_at). The fraction is read from an array: looked
+/// up here, per stage, it cost 12 % of the step (docs/performance.md).
 /// Race-free in one loop: the derivatives read V and the frozen volumes, never rho or P.
 PARTICULA_HD void derivatives_and_continuity_at(const SweepContext& c, std::size_t i, const Vec2* v,
                                                 const real* rho_start, const real* rc, const StageParams& s,
