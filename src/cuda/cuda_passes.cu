@@ -180,17 +180,19 @@ void CudaBackend::guard_surfaces(real keep, SolverCounters& cnt) {
 }
 
 std::int64_t CudaBackend::unhealthy_id(const HealthLimits& lim) {
-  const std::size_t nb = nb_;
   const Vec2* x = x_.data();
   const Vec2* v = v_.data();
   const real* rho = rho_.data();
   const real* p = p_.data();
   const std::int64_t* id = id_.data();
+  const Kind* kind = kind_.data();
   unsigned long long* worst = counters_.data() + kUnhealthy;
   const unsigned long long none = ULLONG_MAX;
   check(cudaMemcpy(worst, &none, sizeof none, cudaMemcpyHostToDevice), "health");
   each(0, n_, [=] __device__(std::size_t i) {
-    if (particle_unhealthy(i >= nb, x[i], v[i], rho[i], p[i], lim))
+    // Fluid by kind, as on the CPU: the buffer particles of open boundaries lie outside the
+    // domain and carry the boundary's prescribed state, not a density to check.
+    if (particle_unhealthy(kind[i] == Kind::Fluid, x[i], v[i], rho[i], p[i], lim))
       atomicMin(worst, static_cast<unsigned long long>(id[i]));
   });
   unsigned long long w = 0;
