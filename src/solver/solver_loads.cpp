@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <omp.h>
+
 #include "particula/solver/solver.hpp"
 
 namespace particula {
@@ -161,33 +163,37 @@ void Solver::build_load_band() {
   bin_bodies_for_band(reach);
   band_grid_.setup(domain_, prm_.h);  // a few numbers: cheaper than checking
   band_grid_.bin(x);
-  band_count_.assign(nf + 1, 0);
-  // Pass 1: how many solids each fluid particle is near; pass 2: phi and grad phi for each.
-#pragma omp parallel for schedule(static)
-  for (std::size_t f = 0; f < nf; ++f) {
+  // One pass: each thread takes a contiguous range of fluid particles and lists their entries in
+  // particle order, so that the ranges joined in thread order are in particle order whatever the
+  // thread count (the distances to the solids, most of the band's cost, are computed once).
+  band_parts_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+  for (auto& part : band_parts_) part.clear();
+#pragma omp parallel
+  {
+    const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()),
+                      nt = static_cast<std::size_t>(omp_get_num_threads());
+    std::vector<BandEntry>& part = band_parts_[t];
     NearSolid near[kMaxNear];
-    // buffer particles of open boundaries are set, not integrated: they carry no momentum balance
-    band_count_[f + 1] =
-        in_load_band(nb + f) ? static_cast<std::uint32_t>(near_solids(x[nb + f], reach, near, kMaxNear)) : 0;
-  }
-  for (std::size_t f = 0; f < nf; ++f) band_count_[f + 1] += band_count_[f];
-  band_unsorted_.resize(band_count_[nf]);
-#pragma omp parallel for schedule(static)
-  for (std::size_t f = 0; f < nf; ++f) {
-    NearSolid near[kMaxNear];
-    const int count = in_load_band(nb + f) ? near_solids(x[nb + f], reach, near, kMaxNear) : 0;
-    const real area = count > 0 ? band_cell_area(nb + f, x) : 0;
-    for (int k = 0; k < count; ++k) {
-      BandEntry& e = band_unsorted_[band_count_[f] + static_cast<std::size_t>(k)];
-      e.particle = static_cast<std::uint32_t>(nb + f);
-      e.group = near[k].group;
-      band_partition(near, count, k, reach, e.phi, e.grad_phi);
-      e.area = area;
-      e.in_film = false;
-      for (int j = 0; j < count; ++j)
-        if (j != k && near[k].d + near[j].d < kFilmGap * prm_.h) e.in_film = true;
+    for (std::size_t f = nf * t / nt; f < nf * (t + 1) / nt; ++f) {
+      // buffer particles of open boundaries are set, not integrated: they carry no momentum balance
+      const int count = in_load_band(nb + f) ? near_solids(x[nb + f], reach, near, kMaxNear) : 0;
+      if (count == 0) continue;
+      const real area = band_cell_area(nb + f, x);
+      for (int k = 0; k < count; ++k) {
+        BandEntry e;
+        e.particle = static_cast<std::uint32_t>(nb + f);
+        e.group = near[k].group;
+        band_partition(near, count, k, reach, e.phi, e.grad_phi);
+        e.area = area;
+        e.in_film = false;
+        for (int j = 0; j < count; ++j)
+          if (j != k && near[k].d + near[j].d < kFilmGap * prm_.h) e.in_film = true;
+        part.push_back(e);
+      }
     }
   }
+  band_unsorted_.clear();
+  for (const auto& part : band_parts_) band_unsorted_.insert(band_unsorted_.end(), part.begin(), part.end());
   // Counting sort by group (stable: particle order within a group), so that each group's sum
   // runs over its entries in one fixed order whatever the thread count.
   band_first_.assign(groups_.size() + 1, 0);
