@@ -51,8 +51,7 @@ bool Solver::offer_near_solid(Vec2 x, real reach, std::size_t k, NearSolid& out)
   if (g.is_wall) {
     // Distance to the wall, from x's periodic image nearest the wall's middle (an arc's
     // centre), so that a wall spanning a periodic side is found from either end.
-    WallPiece turned;
-    const WallPiece& w = g.angle == g.angle0 ? prm_.walls[k] : (turned = wall_now(k));
+    const WallPiece& w = band_walls_[k];
     const Vec2 rel = domain_.separation(x, w.middle());
     if (w.surely_farther(rel, reach)) return false;
     const Vec2 xi = w.middle() + rel;
@@ -64,7 +63,7 @@ bool Solver::offer_near_solid(Vec2 x, real reach, std::size_t k, NearSolid& out)
     const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
     const Vec2 rel = domain_.separation(x, g.pos);
     if (norm(rel) > b.shape.bounding_radius() + reach) return false;
-    const real c = std::cos(g.angle), s = std::sin(g.angle);
+    const real c = band_turn_[k].x, s = band_turn_[k].y;
     Vec2 nl;
     b.shape.distance_and_gradient(rotate(rel, c, -s), d, nl);
     if (!(d < reach)) return false;
@@ -72,6 +71,21 @@ bool Solver::offer_near_solid(Vec2 x, real reach, std::size_t k, NearSolid& out)
   }
   out = NearSolid{static_cast<std::int32_t>(k), std::max(d, real(0)), n};
   return true;
+}
+
+void Solver::place_solids_for_band() {
+  // Each wall as it stands now and each body's cos / sin of its angle, once a step rather than
+  // once per fluid particle (the same values: the band is bitwise what it was when each
+  // particle computed them).
+  band_walls_.clear();
+  band_turn_.assign(groups_.size(), Vec2{});
+  for (std::size_t k = 0; k < groups_.size(); ++k) {
+    const RigidGroup& g = groups_[k];
+    if (g.is_wall)
+      band_walls_.push_back(g.angle == g.angle0 ? prm_.walls[k] : wall_now(k));
+    else
+      band_turn_[k] = Vec2{std::cos(g.angle), std::sin(g.angle)};
+  }
 }
 
 void Solver::bin_bodies_for_band(real reach) {
@@ -142,15 +156,22 @@ real Solver::band_cell_area(std::size_t i, const std::vector<Vec2>& x) const {
   Vec2 d[kVoronoiMaxVertices - 4];
   int count = 0;
   bool closed_by_fluid = true;
-  visit_neighbors(band_grid_.geometry(), prm_.h * prm_.h, x.data(), band_grid_.sorted().data(),
-                  band_grid_.cell_start().data(), band_grid_.cell_of()[i], static_cast<std::uint32_t>(i),
-                  [&](std::uint32_t j, real) {
-                    if (j < nb || count == kVoronoiMaxVertices - 4) {
-                      closed_by_fluid = false;
-                      return;
-                    }
-                    d[count++] = domain_.separation(x[j], x[i]);
-                  });
+  auto take = [&](std::uint32_t j) {
+    if (j < nb || count == kVoronoiMaxVertices - 4) {
+      closed_by_fluid = false;
+      return;
+    }
+    d[count++] = domain_.separation(x[j], x[i]);
+  };
+  if (dev_) {
+    visit_neighbors(band_grid_.geometry(), prm_.h * prm_.h, x.data(), band_grid_.sorted().data(),
+                    band_grid_.cell_start().data(), band_grid_.cell_of()[i], static_cast<std::uint32_t>(i),
+                    [&](std::uint32_t j, real) { take(j); });
+  } else {
+    // The step's neighbour list, built at these positions from the same cells: the same
+    // neighbours within h in the same order (visit_neighbors), without a second search.
+    for (std::uint32_t s = nl_.start[i]; s < nl_.start[i + 1]; ++s) take(nl_.j[s]);
+  }
   return closed_by_fluid ? voronoi_cell_area(d, count, prm_.h) : 0;
 }
 
@@ -161,8 +182,12 @@ void Solver::build_load_band() {
   const std::size_t nb = P_.n_boundary, nf = x.size() - nb;
   constexpr int kMaxNear = 16;
   bin_bodies_for_band(reach);
-  band_grid_.setup(domain_, prm_.h);  // a few numbers: cheaper than checking
-  band_grid_.bin(x);
+  place_solids_for_band();
+  if (dev_) {
+    // the device's neighbour list stays on the device: bin the downloaded positions here
+    band_grid_.setup(domain_, prm_.h);  // a few numbers: cheaper than checking
+    band_grid_.bin(x);
+  }
   // One pass: each thread takes a contiguous range of fluid particles and lists their entries in
   // particle order, so that the ranges joined in thread order are in particle order whatever the
   // thread count (the distances to the solids, most of the band's cost, are computed once).

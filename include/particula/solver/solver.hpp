@@ -264,11 +264,15 @@ class Solver {
   /// The solids within `reach` of x (walls, then the bodies of the cells round x): at most `max`.
   int near_solids(Vec2 x, real reach, NearSolid* out, int max) const;
   /// The area that weighs fluid particle i's grad(phi) terms in the band (positions x): its
-  /// Voronoi cell among the particles within h (band_grid_), or 0 (its volume m / rho) when a
+  /// Voronoi cell among the particles within h (the step's neighbour list; band_grid_ with the
+  /// GPU backend), or 0 (its volume m / rho) when a
   /// surface particle is within h or the cell is not closed.
   real band_cell_area(std::size_t i, const std::vector<Vec2>& x) const;
   /// Solid k's distance and its gradient at x into `out` when x is within `reach` of it.
   bool offer_near_solid(Vec2 x, real reach, std::size_t k, NearSolid& out) const;
+  /// The walls as they stand now (band_walls_) and the bodies' cos / sin of their angles
+  /// (band_turn_), for offer_near_solid, once a step.
+  void place_solids_for_band();
   /// Wall group k's geometry now (a turning wall rotated about its pivot; a sliding wall runs
   /// along a periodic axis and keeps its line).
   WallPiece wall_now(std::size_t k) const;
@@ -425,7 +429,9 @@ class Solver {
   int band_cells_x_ = 1, band_cells_y_ = 1;
   std::vector<std::size_t> band_cell_start_;
   std::vector<std::uint32_t> band_cell_bodies_;
-  CellGrid band_grid_;  // every particle binned once a step for band_cell_area (both backends)
+  CellGrid band_grid_;  // GPU backend: every particle binned once a step for band_cell_area
+  std::vector<WallPiece> band_walls_;  // wall group k as it stands this step (walls come first)
+  std::vector<Vec2> band_turn_;        // body group k: cos and sin of its angle this step
   std::vector<GroupMotion> motions_;
 
   // contacts of the step (spring-dashpot): the groups a (a body) and b (a body or a wall), the
