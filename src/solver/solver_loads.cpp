@@ -189,15 +189,21 @@ void Solver::build_load_band() {
     band_grid_.bin(x);
   }
   // One pass: each thread takes a contiguous range of fluid particles and lists their entries in
-  // particle order, so that the ranges joined in thread order are in particle order whatever the
-  // thread count (the distances to the solids, most of the band's cost, are computed once).
-  band_parts_.resize(static_cast<std::size_t>(omp_get_max_threads()));
-  for (auto& part : band_parts_) part.clear();
-#pragma omp parallel
+  // particle order (the distances to the solids, most of the band's cost, are computed once).
+  // The entries are then sorted by group, each thread placing its own: within a group, thread
+  // t's entries follow those of the threads before it, so each group's entries are in particle
+  // order whatever the thread count, and each group's sum runs over them in one fixed order.
+  const std::size_t ng = groups_.size();
+  const std::size_t threads = static_cast<std::size_t>(omp_get_max_threads());
+  band_parts_.resize(threads);
+  band_part_next_.assign(threads * ng, 0);
+  band_first_.assign(ng + 1, 0);
+#pragma omp parallel num_threads(static_cast<int>(threads))
   {
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()),
                       nt = static_cast<std::size_t>(omp_get_num_threads());
     std::vector<BandEntry>& part = band_parts_[t];
+    part.clear();
     NearSolid near[kMaxNear];
     for (std::size_t f = nf * t / nt; f < nf * (t + 1) / nt; ++f) {
       // buffer particles of open boundaries are set, not integrated: they carry no momentum balance
@@ -216,17 +222,25 @@ void Solver::build_load_band() {
         part.push_back(e);
       }
     }
+    std::size_t* next = band_part_next_.data() + t * ng;  // this thread's count, then next slot, per group
+    for (const BandEntry& e : part) ++next[static_cast<std::size_t>(e.group)];
+#pragma omp barrier
+#pragma omp single
+    {
+      // group k's entries start at band_first_[k]; thread t's part of them after threads < t's
+      for (std::size_t k = 0; k < ng; ++k) {
+        std::size_t at = band_first_[k];
+        for (std::size_t u = 0; u < nt; ++u) {
+          const std::size_t c = band_part_next_[u * ng + k];
+          band_part_next_[u * ng + k] = at;
+          at += c;
+        }
+        band_first_[k + 1] = at;
+      }
+      band_.resize(band_first_[ng]);
+    }
+    for (const BandEntry& e : part) band_[next[static_cast<std::size_t>(e.group)]++] = e;
   }
-  band_unsorted_.clear();
-  for (const auto& part : band_parts_) band_unsorted_.insert(band_unsorted_.end(), part.begin(), part.end());
-  // Counting sort by group (stable: particle order within a group), so that each group's sum
-  // runs over its entries in one fixed order whatever the thread count.
-  band_first_.assign(groups_.size() + 1, 0);
-  for (const BandEntry& e : band_unsorted_) ++band_first_[static_cast<std::size_t>(e.group) + 1];
-  for (std::size_t k = 0; k < groups_.size(); ++k) band_first_[k + 1] += band_first_[k];
-  band_.resize(band_unsorted_.size());
-  std::vector<std::size_t> next(band_first_.begin(), band_first_.end() - 1);
-  for (const BandEntry& e : band_unsorted_) band_[next[static_cast<std::size_t>(e.group)]++] = e;
   if (dev_) dev_->set_load_band(band_);
 }
 

@@ -422,7 +422,7 @@ class Solver {
   std::vector<BandEntry> band_;
   std::vector<std::size_t> band_first_;
   std::vector<std::vector<BandEntry>> band_parts_;  // per thread: the entries of its range of particles
-  std::vector<BandEntry> band_unsorted_;
+  std::vector<std::size_t> band_part_next_;  // per thread and group: where its next entry goes in band_
   std::vector<Vec2> band_fp_, band_fv_, band_x_, group_pos_;
   std::vector<Vec2> band_torque_;  // per band entry: torque of its pressure part (x) and viscous part (y)
   std::vector<real> group_level_;
