@@ -290,6 +290,10 @@ void Solver::momentum_group_loads() {
 #pragma omp parallel for schedule(static)
     for (std::size_t e = 0; e < ne; ++e) band_entry_level(a, band_[e], band_fp_[e].x, band_fp_[e].y);
   }
+  // Each group's sums run over its own entries in their fixed order, whatever the thread count;
+  // groups are independent, so they are shared out among the threads (dynamic: a wall's band
+  // can hold a hundred times a small body's entries).
+#pragma omp parallel for schedule(dynamic)
   for (std::size_t k = 0; k < ng; ++k) {
     real num = 0, den = 0;
     for (std::size_t e = band_first_[k]; e < band_first_[k + 1]; ++e) {
@@ -306,6 +310,7 @@ void Solver::momentum_group_loads() {
     for (std::size_t e = 0; e < ne; ++e)
       band_entry_load(a, band_[e], band_fp_[e], band_fv_[e], band_torque_[e]);
   }
+#pragma omp parallel for schedule(dynamic)
   for (std::size_t k = 0; k < ng; ++k) {
     RigidGroup& g = groups_[k];
     Vec2 fp, fv;
