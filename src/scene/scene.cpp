@@ -4,10 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "particula/bodies/rigid_motion.hpp"
-#include <stdexcept>
-
 #include "particula/fluid/fluid.hpp"
+#include "scene_bodies.hpp"
 #include "scene_open.hpp"
 #include "scene_walls.hpp"
 
@@ -149,61 +147,6 @@ Vec2 body_position(const BodySpec& b, const Shape& s) {
 }
 
 namespace {
-
-/// A fixed body's surface sample as placed in the particle arrays (world-frame normal).
-struct PlacedSample {
-  bool keep = true;
-  bool junction = false;  // normal and volume factor changed for a body-wall junction
-  Vec2 normal;
-  real volume_factor = 1;
-};
-
-/// A fixed body standing on a wall (the half-disc obstacle of paper 7.5, a block on the floor)
-/// shares a side with the wall. The samples of that side lie on the wall line and face into the
-/// wall: no fluid reaches them, and left in they would be a second, inward-facing surface right
-/// behind the junction, seen by the fluid there through the kernel (it made the fluid particle
-/// in the junction of 7.5 lose its density). They are left out, as the wall particles under the
-/// body are. A corner sample where the body's free side meets the wall is a concave corner of
-/// the fluid, like a box corner: its normal becomes the bisector of the free side's normal and
-/// the wall's, and its volume gets the box corner's factor (corner_volume_factor).
-PlacedSample place_on_walls(const SurfaceSample& smp, Vec2 x, real cth, real sth, const Case& c) {
-  PlacedSample out{true, false, rotate(smp.normal, cth, sth), 1};
-  constexpr real antiparallel = -0.999;
-  for (const auto& ws : c.walls) {
-    const WallNearest near = ws.piece().nearest(x);
-    if (near.distance >= 0.5 * c.d0) continue;
-    const Vec2 nw = near.normal;
-    if (!smp.corner) {
-      if (dot(out.normal, nw) < antiparallel) out.keep = false;
-      continue;
-    }
-    const Vec2 s0 = rotate(smp.sides[0], cth, sth), s1 = rotate(smp.sides[1], cth, sth);
-    const bool f0 = dot(s0, nw) < antiparallel, f1 = dot(s1, nw) < antiparallel;
-    if (f0 && f1) {
-      out.keep = false;
-    } else if (f0 || f1) {
-      const Vec2 free_side = f0 ? s1 : s0, bisector = free_side + nw;
-      if (norm(bisector) < 1e-12) continue;
-      out.junction = true;
-      out.normal = bisector / norm(bisector);
-      out.volume_factor = corner_volume_factor(nw, free_side);
-    }
-  }
-  return out;
-}
-
-/// Whether the surface sample x of a fixed body is hidden from the fluid by the walls: beyond a
-/// wall (outside the region the walls enclose) or beyond the domain's edge along a non-periodic
-/// axis, or within d0/2 of a point where the body crosses a wall (the junction particle there
-/// stands for it).
-bool hidden_by_walls(Vec2 x, const std::vector<WallPiece>& walls, const Domain& dom,
-                     const std::vector<scene_detail::Crossing>& crossings, real d0) {
-  if (scene_detail::beyond_walls(x, walls, dom)) return true;
-  for (const auto& cr : crossings)
-    if (norm(x - cr.x) < 0.5 * d0) return true;
-  return false;
-}
-
 /// Signed distance from x to the nearest body (world frame) where it matters to the fill: the
 /// bodies are binned into a uniform grid of cells at least (largest bounding radius + reach)
 /// wide, and a query takes the bodies of the 3 x 3 cells round x. Every body whose surface
@@ -326,183 +269,32 @@ std::vector<std::int64_t> nearest_kept(const std::vector<std::int64_t>& kept, in
   return best;
 }
 
-}  // namespace
+/// Whether x lies within d0/2 of a body (the lattice points removed there).
+bool near_body(const BodyDistance& body_distance, Vec2 x, real d0) {
+  return body_distance(x) < 0.5 * d0 * (1 - 1e-9);
+}
 
-Scene build_scene(const Case& c) {
-  Scene sc;
-  sc.params = physics_params(c);
-  sc.domain = Domain{c.domain_min, c.domain_max, c.periodic_x, c.periodic_y};
+/// The fluid particles of the scene before their fields are set.
+struct FluidFill {
+  std::vector<Vec2> x;
+  std::vector<real> area;  // fluid area each fluid particle stands for (its mass / rho)
+};
+
+/// The fluid lattice at cell centres, its spacing (sc.dx, sc.dy) adjusted so the box holds a whole
+/// number of cells, perturbed by the case's seed; with the momentum loads the areas fill the
+/// region outside the bodies and inside the walls exactly.
+FluidFill fill_fluid(const Case& c, Scene& sc, const BodyDistance& body_distance) {
   const Domain& dom = sc.domain;
-  Particles& P = sc.particles;
   const real d0 = c.d0;
-  const int dummy_layers = static_cast<int>(std::ceil(c.h_over_d0 - 1e-9));
-  std::vector<Vec2> body_pos;
-  std::vector<real> body_angle;
-  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
-    body_pos.push_back(body_position(c.bodies[k], sc.params.bodies[k].shape));
-    body_angle.push_back(c.bodies[k].angle);
-  }
-  // Exact below 3 d0: above every threshold it is compared with (d0 / 2 here, half a lattice
-  // cell's diagonal in the fill's fractions).
-  const BodyDistance body_distance(sc.params, body_pos, body_angle, dom, 3 * d0);
-  auto near_body = [&](Vec2 x) { return body_distance(x) < 0.5 * d0 * (1 - 1e-9); };
-
-  // ---- boundary block: one rigid group per wall, surface particles then its dummies
-  std::vector<Vec2> bx, bn, blocal;
-  std::vector<real> bds, bvol;
-  std::vector<Kind> bk;
-  std::vector<std::int32_t> bsrc, bgroup;
-  for (std::size_t w = 0; w < c.walls.size(); ++w) {
-    const WallSpec& ws = c.walls[w];
-    RigidGroup g;
-    g.name = ws.name;
-    g.is_wall = true;
-    g.motion = norm(ws.velocity) > 0 || ws.omega != 0 ? Motion::Prescribed : Motion::Fixed;
-    g.vel = ws.velocity;
-    g.omega = ws.omega;
-    // A turning wall's frame is centred on its pivot; other walls' frame is the world frame.
-    if (ws.omega != 0) g.pos = g.pos0 = ws.pivot;
-    g.first = bx.size();
-    auto surf = scene_detail::sample_wall(c, dom, w);
-    // Wall stretches covered by a body (an obstacle sitting on the wall) are not wall surface.
-    std::erase_if(surf, [&](const SurfacePoint& sp) { return near_body(sp.x); });
-    const std::size_t first_surface = bx.size();
-    for (const auto& sp : surf) {
-      bx.push_back(sp.x);
-      blocal.push_back(sp.x - g.pos0);
-      bn.push_back(sp.normal);
-      bds.push_back(sp.ds);
-      bvol.push_back(sp.ds * d0 * (sp.corner ? corner_volume_factor(sp.wall_normal, sp.corner_normal2) : 1.0));
-      bk.push_back(Kind::Boundary);
-      bsrc.push_back(-1);
-      bgroup.push_back(static_cast<std::int32_t>(w));
-    }
-    if (c.boundary == BoundaryModel::Dummy) {
-      for (const auto& [x, s] : scene_detail::dummy_points(surf, d0, dummy_layers)) {
-        bx.push_back(x);
-        blocal.push_back(x - g.pos0);
-        bn.push_back(surf[s].normal);
-        bds.push_back(0);
-        bvol.push_back(d0 * d0);
-        bk.push_back(Kind::Dummy);
-        bsrc.push_back(static_cast<std::int32_t>(first_surface + s));
-        bgroup.push_back(static_cast<std::int32_t>(w));
-      }
-    }
-    g.count = bx.size() - g.first;
-    sc.groups.push_back(g);
-  }
-
-  // ---- bodies: one rigid group each, surface particles (body frame) then dummies
-  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
-    const BodySpec& bs = c.bodies[k];
-    const BodyParams& bp = sc.params.bodies[k];
-    RigidGroup g;
-    g.name = bs.name;
-    g.is_wall = false;
-    g.body = static_cast<int>(k);
-    g.motion = bs.motion == BodyMotion::Free ? Motion::Free
-               : bs.motion == BodyMotion::Fixed ? Motion::Fixed : Motion::Prescribed;
-    g.pos = g.pos0 = body_pos[k];
-    g.angle = g.angle0 = bs.angle;
-    if (g.motion == Motion::Free) {
-      g.vel = bs.velocity;
-      g.omega = bs.omega;
-    } else if (g.motion == Motion::Prescribed) {
-      const auto st = prescribed_state(bs.schedule, bs.velocity, bs.omega, 0.0);
-      g.vel = st.vel;
-      g.omega = st.omega;
-      g.acc = st.acc;
-      g.alpha = st.alpha;
-    }
-    g.area = bp.shape.area();
-    g.mass = bs.density * g.area;
-    g.inertia = bs.density * bp.shape.polar_moment();
-    g.first = bx.size();
-    const real cth = std::cos(bs.angle), sth = std::sin(bs.angle);
-    const auto add_surface = [&](Vec2 x, Vec2 local, Vec2 normal_local, real ds, real volume_factor) {
-      bx.push_back(x);
-      blocal.push_back(local);
-      bn.push_back(normal_local);
-      bds.push_back(ds);
-      bvol.push_back(ds * d0 * volume_factor);
-      bk.push_back(Kind::Boundary);
-      bsrc.push_back(-1);
-      bgroup.push_back(static_cast<std::int32_t>(sc.groups.size()));
-    };
-    // A fixed body crossing a wall: the points where its surface meets the wall (junctions).
-    std::vector<scene_detail::Crossing> crossings;
-    if (g.motion == Motion::Fixed)
-      for (const WallPiece& w : sc.params.walls) {
-        const auto found = scene_detail::body_wall_crossings(bp.shape, g.pos, bs.angle, w, d0);
-        crossings.insert(crossings.end(), found.begin(), found.end());
-      }
-    std::vector<std::size_t> kept;  // indices into bp.samples of the surface particles made
-    for (std::size_t s = 0; s < bp.samples.size(); ++s) {
-      const SurfaceSample& smp = bp.samples[s];
-      const Vec2 x = g.pos + rotate(smp.x, cth, sth);
-      Vec2 normal = smp.normal;
-      real volume_factor = 1;
-      if (g.motion == Motion::Fixed) {
-        const PlacedSample ps = place_on_walls(smp, x, cth, sth, c);
-        if (!ps.keep) continue;
-        if (ps.junction) {
-          normal = rotate(ps.normal, cth, -sth);  // back to the body frame
-          volume_factor = ps.volume_factor;
-        } else if (hidden_by_walls(x, sc.params.walls, dom, crossings, d0)) {
-          continue;
-        }
-      }
-      kept.push_back(s);
-      add_surface(x, smp.x, normal, smp.ds, volume_factor);
-    }
-    // Each crossing is a concave corner of the fluid between the body's free side and the wall,
-    // like a box corner: a surface particle there with the bisector normal and the corner's
-    // volume factor, standing for d0 of surface (half on each side).
-    for (const auto& cr : crossings) {
-      const Vec2 bisector = cr.body_normal + cr.wall_normal;
-      if (norm(bisector) < 1e-12) continue;
-      const Vec2 n = bisector / norm(bisector);
-      add_surface(cr.x, rotate(cr.x - g.pos, cth, -sth), rotate(n, cth, -sth), d0,
-                  corner_volume_factor(cr.wall_normal, cr.body_normal));
-    }
-    if (c.boundary == BoundaryModel::Dummy) {
-      // Dummy particles on a body-frame lattice inside the solid, up to ceil(h/d0) spacings deep.
-      const int m = static_cast<int>(std::ceil(bp.shape.bounding_radius() / d0)) + 1;
-      for (int iy = -m; iy <= m; ++iy)
-        for (int ix = -m; ix <= m; ++ix) {
-          const Vec2 q{ix * d0, iy * d0};
-          const real sd = bp.shape.signed_distance(q);
-          if (sd > -0.5 * d0 || sd < -(dummy_layers + 0.5) * d0 || kept.empty()) continue;
-          // the part of a body beyond a wall has the wall's dummies behind it
-          if (!crossings.empty() && hidden_by_walls(g.pos + rotate(q, cth, sth), sc.params.walls, dom, {}, d0)) continue;
-          std::size_t nearest = 0;  // among the surface particles made
-          for (std::size_t s2 = 1; s2 < kept.size(); ++s2)
-            if (norm2(bp.samples[kept[s2]].x - q) < norm2(bp.samples[kept[nearest]].x - q)) nearest = s2;
-          bx.push_back(g.pos + rotate(q, cth, sth));
-          blocal.push_back(q);
-          const Vec2 nearest_normal = bn[g.first + nearest];
-          bn.push_back(nearest_normal);
-          bds.push_back(0);
-          bvol.push_back(d0 * d0);
-          bk.push_back(Kind::Dummy);
-          bsrc.push_back(static_cast<std::int32_t>(g.first + nearest));
-          bgroup.push_back(static_cast<std::int32_t>(sc.groups.size()));
-        }
-    }
-    g.count = bx.size() - g.first;
-    sc.groups.push_back(g);
-  }
-
-  // ---- fluid lattice at cell centres, spacing adjusted so the box holds a whole number
   const Vec2 L = dom.size();
   const int nx = std::max(1, static_cast<int>(std::lround(L.x / d0)));
   const int ny = std::max(1, static_cast<int>(std::lround(L.y / d0)));
   sc.dx = L.x / nx;
   sc.dy = L.y / ny;
   SplitMix64 rng(c.seed);
-  std::vector<Vec2> fx;
-  std::vector<real> farea;  // fluid area each fluid particle stands for (its mass / rho)
+  FluidFill fill;
+  std::vector<Vec2>& fx = fill.x;
+  std::vector<real>& farea = fill.area;
   std::vector<std::int64_t> kept(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), -1);
   std::vector<BandCell> band;  // lattice points removed near a body whose cell holds fluid
   const bool exact_fill = c.force == ForceModel::Momentum && (!c.bodies.empty() || !c.walls.empty());
@@ -518,7 +310,7 @@ Scene build_scene(const Case& c) {
       // (a lattice point exactly d0/2 from a wall lying on the box edge stays).
       const bool keep = signed_wall_distance(sc.params.walls, dom, x) >= 0.5 * d0 * (1 - 1e-9);
       const real fraction = exact_fill ? cell_fluid_fraction(x, sc.dx, sc.dy, solid_gap) : real(1);
-      if (!keep || near_body(x)) {
+      if (!keep || near_body(body_distance, x, d0)) {
         if (exact_fill && fraction > 0) band.push_back({ix, iy, fraction});
         continue;
       }
@@ -542,24 +334,14 @@ Scene build_scene(const Case& c) {
     for (const std::int64_t k : to)
       farea[static_cast<std::size_t>(k)] += bc.fraction * sc.dx * sc.dy / static_cast<real>(to.size());
   }
+  return fill;
+}
 
-  const std::size_t nb = bx.size(), n = nb + fx.size();
-  P.resize(n);
-  P.resize_boundary(nb);
-  for (std::size_t i = 0; i < nb; ++i) {
-    P.x[i] = bx[i];
-    P.local[i] = blocal[i];
-    P.normal_local[i] = bn[i];
-    P.normal[i] = bn[i];
-    P.ds[i] = bds[i];
-    P.kind[i] = bk[i];
-    P.source[i] = bsrc[i];
-    P.group[i] = bgroup[i];
-    P.rho[i] = c.rho0;
-    P.p[i] = c.p0;
-    P.m[i] = c.rho0 * bvol[i];
-  }
-
+/// The fluid particles' fields at t = 0 (particles nb on): the hydrostatic pressure, the
+/// case's initial flow, the density from the pressure and the mass from the area.
+void set_initial_fluid(const Case& c, const Domain& dom, const FluidFill& fill, std::size_t nb, Particles& P) {
+  const Vec2 L = dom.size();
+  const real d0 = c.d0;
   // Hydrostatic start: P = rho0 g.(x - x_top), x_top the domain corner highest against g.
   Vec2 x_top = dom.lo;
   for (Vec2 corner : {dom.lo, dom.hi, Vec2{dom.lo.x, dom.hi.y}, Vec2{dom.hi.x, dom.lo.y}})
@@ -573,9 +355,9 @@ Scene build_scene(const Case& c) {
     if (std::fabs(w.from.y - dom.hi.y) < tol && std::fabs(w.to.y - dom.hi.y) < tol) v_upper = w.velocity;
   }
   const real U = c.initial_amplitude;
-  for (std::size_t k = 0; k < fx.size(); ++k) {
+  for (std::size_t k = 0; k < fill.x.size(); ++k) {
     const std::size_t i = nb + k;
-    const Vec2 x = fx[k];
+    const Vec2 x = fill.x[k];
     P.x[i] = x;
     P.kind[i] = Kind::Fluid;
     P.group[i] = -1;
@@ -595,8 +377,87 @@ Scene build_scene(const Case& c) {
     }
     P.p[i] = p;
     P.rho[i] = density_from_pressure(p, c.rho0, c.c, c.p0);
-    P.m[i] = P.rho[i] * farea[k];
+    P.m[i] = P.rho[i] * fill.area[k];
   }
+}
+
+}  // namespace
+
+Scene build_scene(const Case& c) {
+  Scene sc;
+  sc.params = physics_params(c);
+  sc.domain = Domain{c.domain_min, c.domain_max, c.periodic_x, c.periodic_y};
+  const Domain& dom = sc.domain;
+  Particles& P = sc.particles;
+  const real d0 = c.d0;
+  const int dummy_layers = static_cast<int>(std::ceil(c.h_over_d0 - 1e-9));
+  std::vector<Vec2> body_pos;
+  std::vector<real> body_angle;
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    body_pos.push_back(body_position(c.bodies[k], sc.params.bodies[k].shape));
+    body_angle.push_back(c.bodies[k].angle);
+  }
+  // Exact below 3 d0: above every threshold it is compared with (d0 / 2 here, half a lattice
+  // cell's diagonal in the fill's fractions).
+  const BodyDistance body_distance(sc.params, body_pos, body_angle, dom, 3 * d0);
+
+  // ---- boundary block: one rigid group per wall, surface particles then its dummies
+  scene_detail::BoundaryArrays b;
+  for (std::size_t w = 0; w < c.walls.size(); ++w) {
+    const WallSpec& ws = c.walls[w];
+    RigidGroup g;
+    g.name = ws.name;
+    g.is_wall = true;
+    g.motion = norm(ws.velocity) > 0 || ws.omega != 0 ? Motion::Prescribed : Motion::Fixed;
+    g.vel = ws.velocity;
+    g.omega = ws.omega;
+    // A turning wall's frame is centred on its pivot; other walls' frame is the world frame.
+    if (ws.omega != 0) g.pos = g.pos0 = ws.pivot;
+    g.first = b.size();
+    auto surf = scene_detail::sample_wall(c, dom, w);
+    // Wall stretches covered by a body (an obstacle sitting on the wall) are not wall surface.
+    std::erase_if(surf, [&](const SurfacePoint& sp) { return near_body(body_distance, sp.x, d0); });
+    const std::size_t first_surface = b.size();
+    for (const auto& sp : surf) {
+      b.add(sp.x, sp.x - g.pos0, sp.normal, sp.ds,
+            sp.ds * d0 * (sp.corner ? corner_volume_factor(sp.wall_normal, sp.corner_normal2) : 1.0),
+            Kind::Boundary, -1, static_cast<std::int32_t>(w));
+    }
+    if (c.boundary == BoundaryModel::Dummy) {
+      for (const auto& [x, s] : scene_detail::dummy_points(surf, d0, dummy_layers)) {
+        b.add(x, x - g.pos0, surf[s].normal, 0, d0 * d0, Kind::Dummy,
+              static_cast<std::int32_t>(first_surface + s), static_cast<std::int32_t>(w));
+      }
+    }
+    g.count = b.size() - g.first;
+    sc.groups.push_back(g);
+  }
+
+  // ---- bodies: one rigid group each, surface particles (body frame) then dummies
+  for (std::size_t k = 0; k < c.bodies.size(); ++k)
+    sc.groups.push_back(scene_detail::add_body_group(c, sc.params, dom, k, body_pos[k], dummy_layers,
+                                                     static_cast<std::int32_t>(sc.groups.size()), b));
+
+  const FluidFill fill = fill_fluid(c, sc, body_distance);
+
+  const std::size_t nb = b.size(), n = nb + fill.x.size();
+  P.resize(n);
+  P.resize_boundary(nb);
+  for (std::size_t i = 0; i < nb; ++i) {
+    P.x[i] = b.x[i];
+    P.local[i] = b.local[i];
+    P.normal_local[i] = b.normal[i];
+    P.normal[i] = b.normal[i];
+    P.ds[i] = b.ds[i];
+    P.kind[i] = b.kind[i];
+    P.source[i] = b.source[i];
+    P.group[i] = b.group[i];
+    P.rho[i] = c.rho0;
+    P.p[i] = c.p0;
+    P.m[i] = c.rho0 * b.volume[i];
+  }
+
+  set_initial_fluid(c, dom, fill, nb, P);
   for (std::size_t i = 0; i < n; ++i) P.id[i] = static_cast<std::int64_t>(i);
   scene_detail::append_buffers(c, sc);
   return sc;
