@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "particula/fluid/fluid.hpp"
+#include "particula/neighbors/body_cells.hpp"
 #include "scene_bodies.hpp"
 #include "scene_open.hpp"
 #include "scene_walls.hpp"
@@ -160,66 +161,34 @@ class BodyDistance {
                const Domain& dom, real reach)
       : prm_(prm), pos_(pos), dom_(dom) {
     real bound = 0;
+    std::vector<BodyCells::Item> items;
     for (std::size_t k = 0; k < pos.size(); ++k) {
       bound = std::max(bound, prm.bodies[k].shape.bounding_radius());
       turn_.push_back({std::cos(angle[k]), std::sin(angle[k])});
+      items.push_back({static_cast<std::uint32_t>(k), pos[k]});
     }
-    const Vec2 L = dom.size();
-    const real cell = bound + reach;
-    nx_ = std::max(1, static_cast<int>(L.x / cell));
-    ny_ = std::max(1, static_cast<int>(L.y / cell));
-    start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
-    std::vector<std::size_t> cell_of(pos.size());
-    for (std::size_t k = 0; k < pos.size(); ++k) ++start_[(cell_of[k] = cell_index(pos[k])) + 1];
-    for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
-    std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
-    bodies_.resize(pos.size());
-    for (std::size_t k = 0; k < pos.size(); ++k) bodies_[next[cell_of[k]]++] = k;
+    cells_.build(dom, bound + reach, items);
   }
 
   real operator()(Vec2 x) const {
     real d = std::numeric_limits<real>::infinity();
-    if (bodies_.empty()) return d;
-    const std::size_t c0 = cell_index(x);
-    const int cx0 = static_cast<int>(c0 % nx_), cy0 = static_cast<int>(c0 / nx_);
-    std::size_t seen[9];
-    int nseen = 0;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        int cx = cx0 + dx, cy = cy0 + dy;
-        if (dom_.periodic_x) cx = (cx + nx_) % nx_;
-        if (dom_.periodic_y) cy = (cy + ny_) % ny_;
-        if (cx < 0 || cx >= nx_ || cy < 0 || cy >= ny_) continue;
-        const std::size_t c = static_cast<std::size_t>(cy) * nx_ + cx;
-        if (std::find(seen, seen + nseen, c) != seen + nseen) continue;
-        seen[nseen++] = c;
-        for (std::size_t q = start_[c]; q < start_[c + 1]; ++q) {
-          const std::size_t k = bodies_[q];
-          const Vec2 rel = dom_.separation(x, pos_[k]);
-          if (norm(rel) > prm_.bodies[k].shape.bounding_radius() + d) continue;
-          const Vec2 local = rotate(rel, turn_[k].x, -turn_[k].y);
-          d = std::min(d, prm_.bodies[k].shape.signed_distance(local));
-        }
-      }
+    if (cells_.empty()) return d;
+    cells_.visit(x, [&](std::uint32_t k) {
+      const Vec2 rel = dom_.separation(x, pos_[k]);
+      if (norm(rel) > prm_.bodies[k].shape.bounding_radius() + d) return true;
+      const Vec2 local = rotate(rel, turn_[k].x, -turn_[k].y);
+      d = std::min(d, prm_.bodies[k].shape.signed_distance(local));
+      return true;
+    });
     return d;
   }
 
  private:
-  /// The cell of x (wrapped into the domain; clamped to the grid along a bounded axis, which
-  /// keeps points within a cell width of each other in the same or adjacent cells).
-  std::size_t cell_index(Vec2 x) const {
-    const Vec2 w = dom_.wrap(x), L = dom_.size();
-    const int cx = std::clamp(static_cast<int>(std::floor((w.x - dom_.lo.x) / L.x * nx_)), 0, nx_ - 1);
-    const int cy = std::clamp(static_cast<int>(std::floor((w.y - dom_.lo.y) / L.y * ny_)), 0, ny_ - 1);
-    return static_cast<std::size_t>(cy) * nx_ + cx;
-  }
-
   const PhysicsParams& prm_;
   const std::vector<Vec2>& pos_;
   const Domain& dom_;
   std::vector<Vec2> turn_;  // cos, sin of each body's angle
-  int nx_ = 1, ny_ = 1;
-  std::vector<std::size_t> start_, bodies_;
+  BodyCells cells_;
 };
 
 /// A lattice point removed within d0/2 of a body whose cell still holds fluid.

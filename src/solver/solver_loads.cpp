@@ -89,65 +89,28 @@ void Solver::place_solids_for_band() {
 }
 
 void Solver::bin_bodies_for_band(real reach) {
-  // A uniform grid of cells at least (largest bounding radius + reach) wide: a particle's solids
-  // are among the bodies of its own and the 8 surrounding cells.
+  // Cells at least (largest bounding radius + reach) wide: a particle's solids are among the
+  // bodies of its own and the 8 surrounding cells.
   real bound = 0;
-  for (const RigidGroup& g : groups_)
-    if (!g.is_wall && !g.removed)
-      bound = std::max(bound, prm_.bodies[static_cast<std::size_t>(g.body)].shape.bounding_radius());
-  const Vec2 L = domain_.size();
-  const real cell = bound + reach;
-  band_cells_x_ = std::max(1, static_cast<int>(L.x / cell));
-  band_cells_y_ = std::max(1, static_cast<int>(L.y / cell));
-  band_cell_start_.assign(static_cast<std::size_t>(band_cells_x_) * band_cells_y_ + 1, 0);
-  band_cell_bodies_.clear();
-  std::vector<std::size_t> cell_of;
+  band_body_items_.clear();
   for (std::size_t k = 0; k < groups_.size(); ++k) {
-    if (groups_[k].is_wall || groups_[k].removed) continue;
-    const std::size_t c = band_cell(domain_.wrap(groups_[k].pos));
-    cell_of.push_back(c);
-    ++band_cell_start_[c + 1];
+    const RigidGroup& g = groups_[k];
+    if (g.is_wall || g.removed) continue;
+    bound = std::max(bound, prm_.bodies[static_cast<std::size_t>(g.body)].shape.bounding_radius());
+    band_body_items_.push_back({static_cast<std::uint32_t>(k), g.pos});
   }
-  for (std::size_t c = 0; c + 1 < band_cell_start_.size(); ++c)
-    band_cell_start_[c + 1] += band_cell_start_[c];
-  band_cell_bodies_.resize(cell_of.size());
-  std::vector<std::size_t> next(band_cell_start_.begin(), band_cell_start_.end() - 1);
-  std::size_t b = 0;
-  for (std::size_t k = 0; k < groups_.size(); ++k)
-    if (!groups_[k].is_wall && !groups_[k].removed)
-      band_cell_bodies_[next[cell_of[b++]]++] = static_cast<std::uint32_t>(k);
-}
-
-std::size_t Solver::band_cell(Vec2 x) const {
-  const Vec2 L = domain_.size();
-  const int cx =
-      std::clamp(static_cast<int>((x.x - domain_.lo.x) / L.x * band_cells_x_), 0, band_cells_x_ - 1);
-  const int cy =
-      std::clamp(static_cast<int>((x.y - domain_.lo.y) / L.y * band_cells_y_), 0, band_cells_y_ - 1);
-  return static_cast<std::size_t>(cy) * band_cells_x_ + cx;
+  band_bodies_.build(domain_, bound + reach, band_body_items_);
 }
 
 int Solver::near_solids(Vec2 x, real reach, NearSolid* out, int max) const {
   int count = 0;
   for (std::size_t k = 0; k < groups_.size() && groups_[k].is_wall && count < max; ++k)
     if (offer_near_solid(x, reach, k, out[count])) ++count;
-  // the bodies of the 3 x 3 cells round x's (each cell once where the grid is narrower than 3)
-  const std::size_t c0 = band_cell(domain_.wrap(x));
-  const int cx0 = static_cast<int>(c0 % band_cells_x_), cy0 = static_cast<int>(c0 / band_cells_x_);
-  std::size_t seen[9];
-  int nseen = 0;
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      int cx = cx0 + dx, cy = cy0 + dy;
-      if (domain_.periodic_x) cx = (cx + band_cells_x_) % band_cells_x_;
-      if (domain_.periodic_y) cy = (cy + band_cells_y_) % band_cells_y_;
-      if (cx < 0 || cx >= band_cells_x_ || cy < 0 || cy >= band_cells_y_) continue;
-      const std::size_t c = static_cast<std::size_t>(cy) * band_cells_x_ + cx;
-      if (std::find(seen, seen + nseen, c) != seen + nseen) continue;
-      seen[nseen++] = c;
-      for (std::size_t q = band_cell_start_[c]; q < band_cell_start_[c + 1] && count < max; ++q)
-        if (offer_near_solid(x, reach, band_cell_bodies_[q], out[count])) ++count;
-    }
+  if (count < max)
+    band_bodies_.visit(x, [&](std::uint32_t k) {
+      if (offer_near_solid(x, reach, k, out[count])) ++count;
+      return count < max;
+    });
   return count;
 }
 

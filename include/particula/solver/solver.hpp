@@ -14,6 +14,7 @@
 #include "particula/boundary/open_boundary.hpp"
 #include "particula/case/case.hpp"
 #include "particula/geometry/shape.hpp"
+#include "particula/neighbors/body_cells.hpp"
 #include "particula/neighbors/domain.hpp"
 #include "particula/neighbors/neighbor_list.hpp"
 #include "particula/solver/device_backend.hpp"
@@ -278,7 +279,6 @@ class Solver {
   WallPiece wall_now(std::size_t k) const;
   /// The bodies binned into cells of (largest bounding radius + reach), once a step.
   void bin_bodies_for_band(real reach);
-  std::size_t band_cell(Vec2 x) const;
   /// The band momentum balance of every group (numerics.force = momentum).
   void momentum_group_loads();
   /// The load of group k's smooth pressure P_h (momentum_loads.hpp), added exactly: the segment
@@ -426,9 +426,8 @@ class Solver {
   std::vector<Vec2> band_fp_, band_fv_, band_x_, group_pos_;
   std::vector<Vec2> band_torque_;  // per band entry: torque of its pressure part (x) and viscous part (y)
   std::vector<real> group_level_;
-  int band_cells_x_ = 1, band_cells_y_ = 1;
-  std::vector<std::size_t> band_cell_start_;
-  std::vector<std::uint32_t> band_cell_bodies_;
+  BodyCells band_bodies_;  // the bodies binned once a step for near_solids
+  std::vector<BodyCells::Item> band_body_items_;
   CellGrid band_grid_;  // GPU backend: every particle binned once a step for band_cell_area
   std::vector<WallPiece> band_walls_;  // wall group k as it stands this step (walls come first)
   std::vector<Vec2> band_turn_;        // body group k: cos and sin of its angle this step
