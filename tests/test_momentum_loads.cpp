@@ -88,6 +88,7 @@ TEST(MomentumLoads, PartitionIsOneOnItsSolidZeroOnTheOthersAndHasTheRightGradien
   auto near_at = [&](Vec2 x, NearSolid* n) {
     n[0] = NearSolid{0, x.y, {0, 1}};
     n[1] = NearSolid{1, 1.2 - x.y, {0, -1}};
+    weigh_near_solids(n, 2, reach);
   };
   NearSolid n[2];
   real phi0, phi1;

@@ -62,7 +62,10 @@ bool Solver::offer_near_solid(Vec2 x, real reach, std::size_t k, NearSolid& out)
   } else {
     const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
     const Vec2 rel = domain_.separation(x, g.pos);
-    if (norm(rel) > b.shape.bounding_radius() + reach) return false;
+    // Most of the bodies offered lie beyond the reach: those are rejected from the squared
+    // distance, without a square root. The margin keeps the decision that of norm(rel) > outer.
+    const real outer = b.shape.bounding_radius() + reach;
+    if (norm2(rel) > outer * outer * (1 + 1e-10) || norm(rel) > outer) return false;
     const real c = band_turn_[k].x, s = band_turn_[k].y;
     Vec2 nl;
     b.shape.distance_and_gradient(rotate(rel, c, -s), d, nl);
@@ -173,6 +176,7 @@ void Solver::build_load_band() {
       const int count = in_load_band(nb + f) ? near_solids(x[nb + f], reach, near, kMaxNear) : 0;
       if (count == 0) continue;
       const real area = band_cell_area(nb + f, x);
+      weigh_near_solids(near, count, reach);
       for (int k = 0; k < count; ++k) {
         BandEntry e;
         e.particle = static_cast<std::uint32_t>(nb + f);
@@ -240,38 +244,40 @@ void Solver::momentum_group_loads() {
   group_pos_.resize(ng);
   for (std::size_t k = 0; k < ng; ++k) group_pos_[k] = groups_[k].pos;
   group_level_.assign(ng, prm_.rho0 * prm_.c * prm_.c);  // P_h = p0 for a group without fluid near it
-  band_fp_.resize(ne);
-  band_fv_.resize(ne);
-  band_torque_.resize(ne);
   LoadArrays a = load_arrays();
+  // Each group's sums run over its own entries in their fixed order, whatever the thread count;
+  // groups are independent, so they are shared out among the threads (dynamic: a wall's band
+  // can hold a hundred times a small body's entries). On the CPU each entry is evaluated inside
+  // its group's sum; the device evaluates them all first and the host sums its results.
   // Pass 1: each group's level K_B, the smooth field that best matches the fluid in its band
   // (the pressure's constant is set by the fluid's mass in a closed box: a P_h off by a
   // constant C adds C times the band's quadrature error of int grad(phi) = 0).
   if (dev_) {
+    band_fp_.resize(ne);
     dev_->band_levels(a, band_fp_);  // (num, den) per entry
-  } else {
-#pragma omp parallel for schedule(static)
-    for (std::size_t e = 0; e < ne; ++e) band_entry_level(a, band_[e], band_fp_[e].x, band_fp_[e].y);
   }
-  // Each group's sums run over its own entries in their fixed order, whatever the thread count;
-  // groups are independent, so they are shared out among the threads (dynamic: a wall's band
-  // can hold a hundred times a small body's entries).
 #pragma omp parallel for schedule(dynamic)
   for (std::size_t k = 0; k < ng; ++k) {
     real num = 0, den = 0;
     for (std::size_t e = band_first_[k]; e < band_first_[k + 1]; ++e) {
-      num += band_fp_[e].x;
-      den += band_fp_[e].y;
+      real n, d;
+      if (dev_) {
+        n = band_fp_[e].x;
+        d = band_fp_[e].y;
+      } else {
+        band_entry_level(a, band_[e], n, d);
+      }
+      num += n;
+      den += d;
     }
     if (den > 0) group_level_[k] = num / den;
   }
-  // Pass 2: the loads of the entries.
+  // Pass 2: the loads of the entries, summed per group.
   if (dev_) {
+    band_fp_.resize(ne);
+    band_fv_.resize(ne);
+    band_torque_.resize(ne);
     dev_->band_loads(a, group_pos_, group_level_, band_fp_, band_fv_, band_torque_);
-  } else {
-#pragma omp parallel for schedule(static)
-    for (std::size_t e = 0; e < ne; ++e)
-      band_entry_load(a, band_[e], band_fp_[e], band_fv_[e], band_torque_[e]);
   }
 #pragma omp parallel for schedule(dynamic)
   for (std::size_t k = 0; k < ng; ++k) {
@@ -288,9 +294,17 @@ void Solver::momentum_group_loads() {
     const bool circle =
         !g.is_wall && prm_.bodies[static_cast<std::size_t>(g.body)].shape.kind() == ShapeKind::Circle;
     for (std::size_t e = band_first_[k]; e < band_first_[k + 1]; ++e) {
-      fp += band_fp_[e];
-      fv += band_fv_[e];
-      torque += circle && band_[e].in_film ? band_torque_[e].y : band_torque_[e].x + band_torque_[e].y;
+      Vec2 efp, efv, et;
+      if (dev_) {
+        efp = band_fp_[e];
+        efv = band_fv_[e];
+        et = band_torque_[e];
+      } else {
+        band_entry_load(a, band_[e], efp, efv, et);
+      }
+      fp += efp;
+      fv += efv;
+      torque += circle && band_[e].in_film ? et.y : et.x + et.y;
     }
     g.force_pressure = fp;
     g.force_viscous = fv;

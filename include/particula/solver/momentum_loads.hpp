@@ -60,11 +60,13 @@ PARTICULA_HD void band_weight(real s, real& w, real& dw) {
 }
 
 /// A solid near a fluid particle: its distance d (m, from the surface, positive in the fluid) and
-/// the unit gradient of that distance at the particle.
+/// the unit gradient of that distance at the particle; w and dw, its band_weight at d / reach
+/// and the derivative (weigh_near_solids).
 struct NearSolid {
   std::int32_t group = -1;
   real d = 0;
   Vec2 n;
+  real w = 0, dw = 0;
 };
 
 /// One fluid particle in the band of one solid: phi_B(x_i) and grad phi_B(x_i), and the area
@@ -117,11 +119,22 @@ PARTICULA_HD real voronoi_cell_area(const Vec2* d, int count, real reach) {
     const real half = 0.5 * dot(dk, dk);
     if (0.5 * half >= r2) continue;  // |d_k| / 2 >= the farthest vertex: no cut
     const Vec2* in = buf[cur];
+    // Each vertex's side of the bisector, once. With no vertex beyond it the clip would return
+    // the polygon as it is (every vertex kept, no crossing), so it is skipped; a polygon of 48
+    // vertices is left to the clip, which gives up on it.
+    real f[kVoronoiMaxVertices];
+    bool cuts = n >= kVoronoiMaxVertices;
+    for (int a = 0; a < n; ++a) {
+      f[a] = dot(in[a], dk) - half;
+      cuts = cuts || f[a] > 0;
+    }
+    if (!cuts) continue;
     Vec2* out = buf[1 - cur];
     int m = 0;
     for (int a = 0; a < n; ++a) {
-      const Vec2 P = in[a], Q = in[a + 1 < n ? a + 1 : 0];
-      const real fp = dot(P, dk) - half, fq = dot(Q, dk) - half;
+      const int b = a + 1 < n ? a + 1 : 0;
+      const Vec2 P = in[a], Q = in[b];
+      const real fp = f[a], fq = f[b];
       if (m + 2 > kVoronoiMaxVertices) return 0;
       if (fp <= 0) out[m++] = P;
       if ((fp < 0 && fq > 0) || (fp > 0 && fq < 0)) out[m++] = P + (fp / (fp - fq)) * (Q - P);
@@ -138,23 +151,24 @@ PARTICULA_HD real voronoi_cell_area(const Vec2* d, int count, real reach) {
   return r2 < a0 * a0 ? 0.5 * area : 0;
 }
 
-/// phi and grad phi of solid k among the `count` solids near a particle (band reach `reach`, m).
+/// The band weight w and dw of each of the `count` solids near a particle (band reach `reach`,
+/// m), once per particle: every solid's phi_B among them reads all of them (band_partition).
+PARTICULA_HD void weigh_near_solids(NearSolid* near, int count, real reach) {
+  for (int c = 0; c < count; ++c) band_weight(near[c].d / reach, near[c].w, near[c].dw);
+}
+
+/// phi and grad phi of solid k among the `count` solids near a particle, weighed by
+/// weigh_near_solids with the same reach: phi_B = w_B / (1 + sum_C w_C).
 PARTICULA_HD void band_partition(const NearSolid* near, int count, int k, real reach, real& phi, Vec2& grad_phi) {
-  real S = 1, wk = 0, dwk = 0;
+  real S = 1;
   Vec2 gradS;
   for (int c = 0; c < count; ++c) {
-    real w, dw;
-    band_weight(near[c].d / reach, w, dw);
-    S += w;
-    gradS += (dw / reach) * near[c].n;
-    if (c == k) {
-      wk = w;
-      dwk = dw;
-    }
+    S += near[c].w;
+    gradS += (near[c].dw / reach) * near[c].n;
   }
-  phi = wk / S;
+  phi = near[k].w / S;
   // grad(w_k / S) = (grad w_k - phi grad S) / S
-  grad_phi = ((dwk / reach) * near[k].n - phi * gradS) / S;
+  grad_phi = ((near[k].dw / reach) * near[k].n - phi * gradS) / S;
 }
 
 /// What the load sum reads of fluid particle i in the current stage.
