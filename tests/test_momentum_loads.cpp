@@ -123,22 +123,25 @@ TEST(MomentumLoads, PartitionIsOneOnItsSolidZeroOnTheOthersAndHasTheRightGradien
 TEST(MomentumLoads, BandLoadSplitsItsTorqueIntoThePressureAndViscousParts) {
   // A circle takes only the viscous part (Solver::momentum_group_loads), so the two parts must
   // be the moments of fp and fv about the solid's reference point, each on its own.
-  LoadSample s;
+  BandSample s;
   s.m = 4e-5;
-  s.rho = 1010;
+  s.w = 4e-5 / 1010;
   s.area = 3.9e-8;
-  s.p_dyn = 37;
-  s.grad_v = Mat2{3, -2, 5, 1};
-  s.rate_p = {120, -340};
-  s.rate_v = {-15, 60};
-  s.grad_p_h = {0, -9810};
-  s.lever = {1.1e-3, -0.4e-3};
+  s.p_rel = 1037;
+  s.shape = 1;
+  s.tau = 0.01 * Mat2{6, 3, 3, -6};
+  s.m_rate_p = s.m * Vec2{120, -340};
+  s.m_rate_v = s.m * Vec2{-15, 60};
+  LoadArrays a;
+  a.c2 = 1;
+  a.g_h = {0, -9.81};
+  const Vec2 lever{1.1e-3, -0.4e-3};
   Vec2 fp, fv, torque;
-  band_load(s, 0.7, Vec2{-800, 2500}, 0.01, fp, fv, torque);
-  ASSERT_GT(std::fabs(cross(s.lever, fp)), 1e-12);
-  ASSERT_GT(std::fabs(cross(s.lever, fv)), 1e-14);
-  EXPECT_DOUBLE_EQ(torque.x, cross(s.lever, fp));
-  EXPECT_DOUBLE_EQ(torque.y, cross(s.lever, fv));
+  band_share_load(s, 0.7, Vec2{-800, 2500}, 1000, lever, a, fp, fv, torque);
+  ASSERT_GT(std::fabs(cross(lever, fp)), 1e-12);
+  ASSERT_GT(std::fabs(cross(lever, fv)), 1e-14);
+  EXPECT_DOUBLE_EQ(torque.x, cross(lever, fp));
+  EXPECT_DOUBLE_EQ(torque.y, cross(lever, fv));
 }
 
 namespace {

@@ -2,6 +2,7 @@
 // (P.26-P.27) or the band momentum balance of solver/momentum_loads.hpp.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <omp.h>
 
@@ -155,15 +156,12 @@ void Solver::build_load_band() {
     band_grid_.bin(x);
   }
   // One pass: each thread takes a contiguous range of fluid particles and lists their entries in
-  // particle order (the distances to the solids, most of the band's cost, are computed once).
-  // The entries are then sorted by group, each thread placing its own: within a group, thread
-  // t's entries follow those of the threads before it, so each group's entries are in particle
-  // order whatever the thread count, and each group's sum runs over them in one fixed order.
-  const std::size_t ng = groups_.size();
+  // particle order; the threads' lists are then joined in thread order, so the band is in
+  // particle order whatever the thread count.
   const std::size_t threads = static_cast<std::size_t>(omp_get_max_threads());
   band_parts_.resize(threads);
-  band_part_next_.assign(threads * ng, 0);
-  band_first_.assign(ng + 1, 0);
+  band_part_first_.assign(threads + 1, 0);
+  const real film = kFilmGap * prm_.h;
 #pragma omp parallel num_threads(static_cast<int>(threads))
   {
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()),
@@ -177,38 +175,80 @@ void Solver::build_load_band() {
       if (count == 0) continue;
       const real area = band_cell_area(nb + f, x);
       weigh_near_solids(near, count, reach);
+      real S;
+      Vec2 gradS;
+      band_partition_sum(near, count, reach, S, gradS);
+      // the particle is in a film between solid k and another when d_k plus the smallest
+      // distance to another solid is below kFilmGap h
+      int closest = 0;
+      for (int k = 1; k < count; ++k)
+        if (near[k].d < near[closest].d) closest = k;
+      real second = std::numeric_limits<real>::infinity();
+      for (int k = 0; k < count; ++k)
+        if (k != closest && near[k].d < second) second = near[k].d;
       for (int k = 0; k < count; ++k) {
         BandEntry e;
         e.particle = static_cast<std::uint32_t>(nb + f);
         e.group = near[k].group;
-        band_partition(near, count, k, reach, e.phi, e.grad_phi);
+        band_partition_of(near[k], S, gradS, reach, e.phi, e.grad_phi);
         e.area = area;
-        e.in_film = false;
-        for (int j = 0; j < count; ++j)
-          if (j != k && near[k].d + near[j].d < kFilmGap * prm_.h) e.in_film = true;
+        e.in_film = near[k].d + (k == closest ? second : near[closest].d) < film;
         part.push_back(e);
       }
     }
-    std::size_t* next = band_part_next_.data() + t * ng;  // this thread's count, then next slot, per group
-    for (const BandEntry& e : part) ++next[static_cast<std::size_t>(e.group)];
+    band_part_first_[t + 1] = part.size();
 #pragma omp barrier
 #pragma omp single
     {
-      // group k's entries start at band_first_[k]; thread t's part of them after threads < t's
-      for (std::size_t k = 0; k < ng; ++k) {
-        std::size_t at = band_first_[k];
-        for (std::size_t u = 0; u < nt; ++u) {
-          const std::size_t c = band_part_next_[u * ng + k];
-          band_part_next_[u * ng + k] = at;
-          at += c;
-        }
-        band_first_[k + 1] = at;
-      }
-      band_.resize(band_first_[ng]);
+      for (std::size_t u = 0; u < nt; ++u) band_part_first_[u + 1] += band_part_first_[u];
+      band_.resize(band_part_first_[nt]);
     }
-    for (const BandEntry& e : part) band_[next[static_cast<std::size_t>(e.group)]++] = e;
+    std::copy(part.begin(), part.end(), band_.begin() + static_cast<std::ptrdiff_t>(band_part_first_[t]));
   }
+  assign_band_slots();
   if (dev_) dev_->set_load_band(band_);
+}
+
+void Solver::assign_band_slots() {
+  // Each block of kBandBlock entries numbers the groups it holds in the order they first appear
+  // (BandEntry::slot); band_block_first_[b] is where block b's groups start in band_slot_group_.
+  const std::size_t ne = band_.size(), nblocks = (ne + kBandBlock - 1) / kBandBlock;
+  band_block_first_.assign(nblocks + 1, 0);
+#pragma omp parallel
+  {
+    std::vector<std::int32_t> slot_of(groups_.size(), -1);
+#pragma omp for schedule(static)
+    for (std::size_t b = 0; b < nblocks; ++b) {
+      const std::size_t e0 = b * kBandBlock, e1 = std::min(ne, e0 + kBandBlock);
+      std::int32_t count = 0;
+      for (std::size_t e = e0; e < e1; ++e) {
+        std::int32_t& slot = slot_of[static_cast<std::size_t>(band_[e].group)];
+        if (slot < 0) slot = count++;
+        band_[e].slot = static_cast<std::uint16_t>(slot);
+      }
+      for (std::size_t e = e0; e < e1; ++e) slot_of[static_cast<std::size_t>(band_[e].group)] = -1;
+      band_block_first_[b + 1] = static_cast<std::size_t>(count);
+    }
+  }
+  for (std::size_t b = 0; b < nblocks; ++b) band_block_first_[b + 1] += band_block_first_[b];
+  band_slot_group_.resize(band_block_first_[nblocks]);
+#pragma omp parallel for schedule(static)
+  for (std::size_t b = 0; b < nblocks; ++b)
+    for (std::size_t e = b * kBandBlock; e < std::min(ne, (b + 1) * kBandBlock); ++e)
+      band_slot_group_[band_block_first_[b] + band_[e].slot] = band_[e].group;
+}
+
+template <class T, class BlockSum>
+void Solver::sum_band(std::vector<T>& partial, std::vector<T>& total, BlockSum block_sum) const {
+  // Each block's sum per group (slots), in parallel, then the blocks' sums added per group in
+  // block order: one fixed order of additions whatever the thread count.
+  const std::size_t ne = band_.size(), nblocks = band_block_first_.size() - 1;
+  partial.assign(band_block_first_[nblocks], T{});
+#pragma omp parallel for schedule(static)
+  for (std::size_t b = 0; b < nblocks; ++b)
+    block_sum(b * kBandBlock, std::min(ne, (b + 1) * kBandBlock), partial.data() + band_block_first_[b]);
+  total.assign(groups_.size(), T{});
+  for (std::size_t s = 0; s < partial.size(); ++s) total[static_cast<std::size_t>(band_slot_group_[s])] += partial[s];
 }
 
 LoadArrays Solver::load_arrays() const {
@@ -244,11 +284,10 @@ void Solver::momentum_group_loads() {
   group_pos_.resize(ng);
   for (std::size_t k = 0; k < ng; ++k) group_pos_[k] = groups_[k].pos;
   group_level_.assign(ng, prm_.rho0 * prm_.c * prm_.c);  // P_h = p0 for a group without fluid near it
-  LoadArrays a = load_arrays();
-  // Each group's sums run over its own entries in their fixed order, whatever the thread count;
-  // groups are independent, so they are shared out among the threads (dynamic: a wall's band
-  // can hold a hundred times a small body's entries). On the CPU each entry is evaluated inside
-  // its group's sum; the device evaluates them all first and the host sums its results.
+  const LoadArrays a = load_arrays();
+  // On the CPU each particle's sample is read once for all its entries (consecutive in the band)
+  // and each entry evaluated inside its block's sum; the device evaluates every entry and the
+  // host sums its results in the same blocks.
   // Pass 1: each group's level K_B, the smooth field that best matches the fluid in its band
   // (the pressure's constant is set by the fluid's mass in a closed box: a P_h off by a
   // constant C adds C times the band's quadrature error of int grad(phi) = 0).
@@ -256,59 +295,68 @@ void Solver::momentum_group_loads() {
     band_fp_.resize(ne);
     dev_->band_levels(a, band_fp_);  // (num, den) per entry
   }
-#pragma omp parallel for schedule(dynamic)
-  for (std::size_t k = 0; k < ng; ++k) {
-    real num = 0, den = 0;
-    for (std::size_t e = band_first_[k]; e < band_first_[k + 1]; ++e) {
-      real n, d;
+  sum_band(band_level_partial_, band_level_total_, [&](std::size_t e0, std::size_t e1, Vec2* sums) {
+    std::uint32_t sampled = std::numeric_limits<std::uint32_t>::max();
+    BandSample s;
+    for (std::size_t e = e0; e < e1; ++e) {
+      const BandEntry& be = band_[e];
+      Vec2 nd;
       if (dev_) {
-        n = band_fp_[e].x;
-        d = band_fp_[e].y;
+        nd = band_fp_[e];
       } else {
-        band_entry_level(a, band_[e], n, d);
+        if (be.particle != sampled) s = band_sample(a, sampled = be.particle, be.area);
+        band_share_level(s, be.phi, nd.x, nd.y);
       }
-      num += n;
-      den += d;
+      sums[be.slot] += nd;
     }
-    if (den > 0) group_level_[k] = num / den;
-  }
-  // Pass 2: the loads of the entries, summed per group.
+  });
+  for (std::size_t k = 0; k < ng; ++k)
+    if (band_level_total_[k].y > 0) group_level_[k] = band_level_total_[k].x / band_level_total_[k].y;
+  // Pass 2: the loads of the entries, summed per group. A circle takes no torque from pressure
+  // about its centre (P r x n = 0 on its surface), and the band's pressure torque, exact in the
+  // continuum and resolved elsewhere, is not in a film between the circle and another surface
+  // thinner than about two spacings: P grad(phi) there is normal to the film, not to the circle,
+  // and nothing in the unresolved film cancels its moment (docs/method-notes.md, "Forces on
+  // solids"). So a circle takes only the viscous part of the torque of its entries in such a film.
+  group_circle_.resize(ng);
+  for (std::size_t k = 0; k < ng; ++k)
+    group_circle_[k] = !groups_[k].is_wall &&
+                       prm_.bodies[static_cast<std::size_t>(groups_[k].body)].shape.kind() == ShapeKind::Circle;
   if (dev_) {
     band_fp_.resize(ne);
     band_fv_.resize(ne);
     band_torque_.resize(ne);
     dev_->band_loads(a, group_pos_, group_level_, band_fp_, band_fv_, band_torque_);
   }
-#pragma omp parallel for schedule(dynamic)
-  for (std::size_t k = 0; k < ng; ++k) {
-    RigidGroup& g = groups_[k];
-    Vec2 fp, fv;
-    real torque = 0;
-    smooth_pressure_load(a, k, fp, torque);
-    // A circle takes no torque from pressure about its centre (P r x n = 0 on its surface), and
-    // the band's pressure torque, exact in the continuum and resolved elsewhere, is not in a film
-    // between the circle and another surface thinner than about two spacings: P grad(phi) there is
-    // normal to the film, not to the circle, and nothing in the unresolved film cancels its moment
-    // (docs/method-notes.md, "Forces on solids"). So a circle takes only the viscous part of the
-    // torque of its entries in such a film.
-    const bool circle =
-        !g.is_wall && prm_.bodies[static_cast<std::size_t>(g.body)].shape.kind() == ShapeKind::Circle;
-    for (std::size_t e = band_first_[k]; e < band_first_[k + 1]; ++e) {
+  sum_band(band_load_partial_, band_load_total_, [&](std::size_t e0, std::size_t e1, BandLoadSum* sums) {
+    std::uint32_t sampled = std::numeric_limits<std::uint32_t>::max();
+    BandSample s;
+    for (std::size_t e = e0; e < e1; ++e) {
+      const BandEntry& be = band_[e];
       Vec2 efp, efv, et;
       if (dev_) {
         efp = band_fp_[e];
         efv = band_fv_[e];
         et = band_torque_[e];
       } else {
-        band_entry_load(a, band_[e], efp, efv, et);
+        if (be.particle != sampled) s = band_sample(a, sampled = be.particle, be.area);
+        band_entry_share(a, s, be, efp, efv, et);
       }
-      fp += efp;
-      fv += efv;
-      torque += circle && band_[e].in_film ? et.y : et.x + et.y;
+      BandLoadSum& sum = sums[be.slot];
+      sum.fp += efp;
+      sum.fv += efv;
+      sum.torque += group_circle_[static_cast<std::size_t>(be.group)] && be.in_film ? et.y : et.x + et.y;
     }
-    g.force_pressure = fp;
-    g.force_viscous = fv;
-    g.torque = torque;
+  });
+#pragma omp parallel for schedule(dynamic)
+  for (std::size_t k = 0; k < ng; ++k) {
+    RigidGroup& g = groups_[k];
+    Vec2 fp;
+    real torque = 0;
+    smooth_pressure_load(a, k, fp, torque);
+    g.force_pressure = fp + band_load_total_[k].fp;
+    g.force_viscous = band_load_total_[k].fv;
+    g.torque = torque + band_load_total_[k].torque;
   }
 }
 

@@ -27,6 +27,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 #include "particula/core/types.hpp"
@@ -78,10 +79,16 @@ struct BandEntry {
   real phi = 0;
   Vec2 grad_phi;
   real area = 0;
+  // this entry's group among the groups of its block of kBandBlock entries (Solver::sum_band)
+  std::uint16_t slot = 0;
   // the particle sits in a film between this solid and another thinner than kFilmGap h (the sum
   // of its distances to the two): the band's pressure torque is not resolved there
   bool in_film = false;
 };
+
+/// The band's entries are summed per group in blocks of this many (in particle order): each
+/// block's sum per group, then the blocks' sums in block order, whatever the thread count.
+inline constexpr std::size_t kBandBlock = 1024;
 
 /// A film between two solid surfaces thinner than this many h holds at most about two fluid
 /// particles across: there the partition phi_B falls from 1 to 0 across the film within a
@@ -157,50 +164,33 @@ PARTICULA_HD void weigh_near_solids(NearSolid* near, int count, real reach) {
   for (int c = 0; c < count; ++c) band_weight(near[c].d / reach, near[c].w, near[c].dw);
 }
 
-/// phi and grad phi of solid k among the `count` solids near a particle, weighed by
-/// weigh_near_solids with the same reach: phi_B = w_B / (1 + sum_C w_C).
-PARTICULA_HD void band_partition(const NearSolid* near, int count, int k, real reach, real& phi, Vec2& grad_phi) {
-  real S = 1;
-  Vec2 gradS;
+/// The denominator of the partition at a particle, S = 1 + sum_C w_C over the `count` solids
+/// near it (weighed by weigh_near_solids with the same reach), and its gradient: once per
+/// particle, for all its solids.
+PARTICULA_HD void band_partition_sum(const NearSolid* near, int count, real reach, real& S, Vec2& gradS) {
+  S = 1;
+  gradS = Vec2{};
   for (int c = 0; c < count; ++c) {
     S += near[c].w;
     gradS += (near[c].dw / reach) * near[c].n;
   }
-  phi = near[k].w / S;
-  // grad(w_k / S) = (grad w_k - phi grad S) / S
-  grad_phi = ((near[k].dw / reach) * near[k].n - phi * gradS) / S;
 }
 
-/// What the load sum reads of fluid particle i in the current stage.
-struct LoadSample {
-  real m = 0, rho = 0;
-  real area = 0;    // weight of the grad(phi) terms (BandEntry::area; 0: m / rho)
-  real p_dyn = 0;   // P_i - P_h(x_i): the pressure less the smooth field taken out exactly
-  Mat2 grad_v;      // L_ab = d_a V_b (renormalized, P.7)
-  Vec2 rate_p;      // -<grad P>_i / rho_i: the pressure share of the particle's a - f
-  Vec2 rate_v;      // nu <lap V>_i: the viscous share
-  Vec2 grad_p_h;    // grad P_h (rho0 times the acceleration whose pressure is taken out)
-  Vec2 lever;       // r_i = x_i - X_B (minimum image)
-};
+/// phi_B = w_B / S and its gradient for the solid `near` of a particle whose partition sum is
+/// S, gradS (band_partition_sum).
+PARTICULA_HD void band_partition_of(const NearSolid& near, real S, Vec2 gradS, real reach, real& phi, Vec2& grad_phi) {
+  phi = near.w / S;
+  // grad(w_k / S) = (grad w_k - phi grad S) / S
+  grad_phi = ((near.dw / reach) * near.n - phi * gradS) / S;
+}
 
-/// Load of fluid particle i on solid B, -[A_i grad(phi) . sigma_dyn + phi (m_i (a_i - f) +
-/// w_i grad P_h)] with sigma_dyn = -P_dyn I + mu (L + L^T), A_i the particle's area (its Voronoi
-/// cell, or w_i = m_i / rho_i), split into the pressure part (P_dyn, <grad P>, grad P_h) and the
-/// viscous part (tau, <lap V>), and the torques r_i x (each part): torque.x of the pressure part,
-/// torque.y of the viscous part (a circle takes only the latter in a film: Solver::momentum_group_loads).
-/// The phi terms keep the volume w_i: they are the particle's own momentum rate,
-/// m_i (a_i - f) = w_i (-<grad P>_i + ...).
-PARTICULA_HD void band_load(const LoadSample& s, real phi, Vec2 grad_phi, real mu, Vec2& fp, Vec2& fv, Vec2& torque) {
-  const real w = s.m / s.rho;
-  const real A = s.area > 0 ? s.area : w;
-  // tau = mu (L + L^T - tr(L) I): symmetric, and its divergence is mu lap V, the scheme's own
-  // viscous term (mu (L + L^T) differs from it by mu grad(div V), which the weakly compressible
-  // flow does not make zero: the Rhie-Chow term balances a steady div V)
-  const real div_v = trace(s.grad_v);
-  const Mat2 tau = mu * (s.grad_v + transpose(s.grad_v) - Mat2{div_v, 0, 0, div_v});
-  fp = (A * s.p_dyn) * grad_phi - phi * (s.m * s.rate_p + w * s.grad_p_h);
-  fv = -A * (grad_phi * tau) - (phi * s.m) * s.rate_v;
-  torque = Vec2{cross(s.lever, fp), cross(s.lever, fv)};
+/// phi and grad phi of solid k among the `count` solids near a particle, weighed by
+/// weigh_near_solids with the same reach: phi_B = w_B / (1 + sum_C w_C).
+PARTICULA_HD void band_partition(const NearSolid* near, int count, int k, real reach, real& phi, Vec2& grad_phi) {
+  real S;
+  Vec2 gradS;
+  band_partition_sum(near, count, reach, S, gradS);
+  band_partition_of(near[k], S, gradS, reach, phi, grad_phi);
 }
 
 /// The per-particle fields a stage's load sum reads (plain pointers: host or device arrays).
@@ -232,29 +222,78 @@ PARTICULA_HD real smooth_pressure(const LoadArrays& a, std::int32_t g, Vec2 x) {
   return a.p0 - a.rho0 * a.c2 + a.group_level[g] * smooth_pressure_shape(a, x);
 }
 
-/// Band entry e's share of its group's level K_B, the weighted mean of
-/// (P_i - p0 + rho0 c^2) / e(x_i) with weights phi w_i: num and den of the mean.
-PARTICULA_HD void band_entry_level(const LoadArrays& a, const BandEntry& e, real& num, real& den) {
-  const std::uint32_t i = e.particle;
-  den = e.phi * a.m[i] / a.rho[i];
-  num = den * (a.p[i] - a.p0 + a.rho0 * a.c2) / smooth_pressure_shape(a, a.x[i]);
+/// What the band sums read of fluid particle i in a stage, once for all its entries (its
+/// solids differ only in phi, grad phi, K_B and X_B).
+struct BandSample {
+  real m = 0;
+  real w = 0;       // volume m / rho
+  real area = 0;    // weight of the grad(phi) terms: BandEntry::area, or w when that is 0
+  real p_rel = 0;   // P_i - p0 + rho0 c^2: the pressure above the state's zero density
+  real shape = 0;   // e(x_i) of the smooth pressure (smooth_pressure_shape)
+  Mat2 tau;         // mu (L + L^T - tr(L) I), L_ab = d_a V_b (renormalized, P.7)
+  Vec2 m_rate_p;    // m_i (-<grad P>_i / rho_i): the pressure share of the particle's m (a - f)
+  Vec2 m_rate_v;    // m_i nu <lap V>_i: the viscous share
+  Vec2 x;
+};
+
+PARTICULA_HD BandSample band_sample(const LoadArrays& a, std::uint32_t i, real area) {
+  BandSample s;
+  s.m = a.m[i];
+  s.w = s.m / a.rho[i];
+  s.area = area > 0 ? area : s.w;
+  s.p_rel = a.p[i] - a.p0 + a.rho0 * a.c2;
+  s.x = a.x[i];
+  s.shape = smooth_pressure_shape(a, s.x);
+  // tau = mu (L + L^T - tr(L) I): symmetric, and its divergence is mu lap V, the scheme's own
+  // viscous term (mu (L + L^T) differs from it by mu grad(div V), which the weakly compressible
+  // flow does not make zero: the Rhie-Chow term balances a steady div V)
+  const Mat2 L = a.grad_v[i];
+  const real div_v = trace(L);
+  s.tau = a.mu * (L + transpose(L) - Mat2{div_v, 0, 0, div_v});
+  s.m_rate_p = -s.m * a.grad_p_over_rho[i];
+  s.m_rate_v = (s.m * a.nu) * a.lap_v[i];
+  return s;
 }
 
-/// The load of band entry e (band_load for its particle and solid; torque as in band_load).
+/// A particle's share of its solid's level K_B, the weighted mean of (P_i - p0 + rho0 c^2) /
+/// e(x_i) with weights phi w_i: num and den of the mean.
+PARTICULA_HD void band_share_level(const BandSample& s, real phi, real& num, real& den) {
+  den = phi * s.w;
+  num = den * (s.p_rel / s.shape);
+}
+
+/// Load of a particle (sample s) on solid B (its entry e; level = K_B e(x_i) = P_h - p0 +
+/// rho0 c^2 at x_i), -[A_i grad(phi) . sigma_dyn + phi (m_i (a_i - f) + w_i grad P_h)] with
+/// sigma_dyn = -P_dyn I + tau, P_dyn = P_i - P_h(x_i), A_i the particle's area (its Voronoi cell,
+/// or w_i = m_i / rho_i), split into the pressure part (P_dyn, <grad P>, grad P_h) and the
+/// viscous part (tau, <lap V>), and the torques about X_B (lever = x_i - X_B, minimum image) of
+/// each part: torque.x of the pressure part, torque.y of the viscous part (a circle takes only the
+/// latter in a film: Solver::momentum_group_loads). The phi terms keep the volume w_i: they are
+/// the particle's own momentum rate, m_i (a_i - f) = w_i (-<grad P>_i + ...).
+PARTICULA_HD void band_share_load(const BandSample& s, real phi, Vec2 grad_phi, real level, Vec2 lever,
+                                  const LoadArrays& a, Vec2& fp, Vec2& fv, Vec2& torque) {
+  const real p_dyn = s.p_rel - level;
+  const Vec2 grad_p_h = (level / a.c2) * a.g_h;  // rho_h g_h
+  fp = (s.area * p_dyn) * grad_phi - phi * (s.m_rate_p + s.w * grad_p_h);
+  fv = -s.area * (grad_phi * s.tau) - phi * s.m_rate_v;
+  torque = Vec2{cross(lever, fp), cross(lever, fv)};
+}
+
+/// band_share_load of entry e with its particle's sample s and its group's K_B and X_B.
+PARTICULA_HD void band_entry_share(const LoadArrays& a, const BandSample& s, const BandEntry& e, Vec2& fp, Vec2& fv,
+                                   Vec2& torque) {
+  band_share_load(s, e.phi, e.grad_phi, a.group_level[e.group] * s.shape,
+                  a.domain.separation(s.x, a.group_pos[e.group]), a, fp, fv, torque);
+}
+
+/// Band entry e's share of its group's level K_B (band_share_level of its particle).
+PARTICULA_HD void band_entry_level(const LoadArrays& a, const BandEntry& e, real& num, real& den) {
+  band_share_level(band_sample(a, e.particle, e.area), e.phi, num, den);
+}
+
+/// The load of band entry e (band_share_load of its particle on its solid).
 PARTICULA_HD void band_entry_load(const LoadArrays& a, const BandEntry& e, Vec2& fp, Vec2& fv, Vec2& torque) {
-  const std::uint32_t i = e.particle;
-  const real level = a.group_level[e.group] * smooth_pressure_shape(a, a.x[i]);  // P_h - p0 + rho0 c^2
-  LoadSample s;
-  s.m = a.m[i];
-  s.rho = a.rho[i];
-  s.area = e.area;
-  s.p_dyn = a.p[i] - (a.p0 - a.rho0 * a.c2 + level);
-  s.grad_v = a.grad_v[i];
-  s.rate_p = -a.grad_p_over_rho[i];
-  s.rate_v = a.nu * a.lap_v[i];
-  s.grad_p_h = (level / a.c2) * a.g_h;  // rho_h g_h
-  s.lever = a.domain.separation(a.x[i], a.group_pos[e.group]);
-  band_load(s, e.phi, e.grad_phi, a.mu, fp, fv, torque);
+  band_entry_share(a, band_sample(a, e.particle, e.area), e, fp, fv, torque);
 }
 
 }  // namespace particula

@@ -260,8 +260,16 @@ class Solver {
   /// paper`) or the band momentum balance (momentum_loads.hpp).
   void group_loads();
   /// The band entries of this step (phi_B and its gradient at each fluid particle near a solid;
-  /// positions are frozen during the stages), sorted by group.
+  /// positions are frozen during the stages), in particle order.
   void build_load_band();
+  /// Each band entry's slot among the groups of its block of kBandBlock entries, and each
+  /// block's groups (band_block_first_, band_slot_group_).
+  void assign_band_slots();
+  /// A per-entry quantity summed per group into `total` (size: groups) in one fixed order:
+  /// block_sum(e0, e1, sums) adds entries [e0, e1) of one block into sums[slot], the blocks run
+  /// in parallel into `partial`, and their sums are added per group in block order.
+  template <class T, class BlockSum>
+  void sum_band(std::vector<T>& partial, std::vector<T>& total, BlockSum block_sum) const;
   /// The solids within `reach` of x (walls, then the bodies of the cells round x): at most `max`.
   int near_solids(Vec2 x, real reach, NearSolid* out, int max) const;
   /// The area that weighs fluid particle i's grad(phi) terms in the band (positions x): its
@@ -417,12 +425,26 @@ class Solver {
   mutable bool host_current_ = true;  // P_ equals the device state
   bool device_current_ = true;        // the device state equals P_
   std::vector<GroupLoads> loads_;
-  // band momentum balance (numerics.force = momentum): entries of this step by group, the first
-  // entry of each group (size groups + 1), per-entry loads and scratch
+  // band momentum balance (numerics.force = momentum): entries of this step in particle order,
+  // the groups of each block of entries, per-entry loads (GPU backend) and scratch
   std::vector<BandEntry> band_;
-  std::vector<std::size_t> band_first_;
   std::vector<std::vector<BandEntry>> band_parts_;  // per thread: the entries of its range of particles
-  std::vector<std::size_t> band_part_next_;  // per thread and group: where its next entry goes in band_
+  std::vector<std::size_t> band_part_first_;        // where thread t's entries start in band_
+  std::vector<std::size_t> band_block_first_;       // block b's groups: band_slot_group_[first[b]...]
+  std::vector<std::int32_t> band_slot_group_;       // the group of each block's slot
+  struct BandLoadSum {
+    Vec2 fp, fv;
+    real torque = 0;
+    BandLoadSum& operator+=(const BandLoadSum& o) {
+      fp += o.fp;
+      fv += o.fv;
+      torque += o.torque;
+      return *this;
+    }
+  };
+  std::vector<Vec2> band_level_partial_, band_level_total_;  // (num, den) of K_B per block slot / group
+  std::vector<BandLoadSum> band_load_partial_, band_load_total_;
+  std::vector<std::uint8_t> group_circle_;  // group k is a circular body
   std::vector<Vec2> band_fp_, band_fv_, band_x_, group_pos_;
   std::vector<Vec2> band_torque_;  // per band entry: torque of its pressure part (x) and viscous part (y)
   std::vector<real> group_level_;
