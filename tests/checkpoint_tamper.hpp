@@ -159,6 +159,24 @@ inline std::vector<Tamper> structured() {
       {"NaN body angle", [=](Checkpoint& k) { k.groups[4].angle = nan; }},
       {"NaN surface normal", [=](Checkpoint& k) { k.particles.normal[0].x = nan; }},
       {"negative surface length", [](Checkpoint& k) { k.particles.ds[0] = -1; }},
+      {"kept load band of the wrong size",
+       [](Checkpoint& k) {
+         k.load_band.x = k.particles.x;
+         k.load_band.pos.assign(k.groups.size() - 1, {0.003, 0.003});
+         k.load_band.angle.assign(k.groups.size(), 0.0);
+       }},
+      {"kept load band without its particles",
+       [](Checkpoint& k) {
+         k.load_band.pos.assign(k.groups.size(), {0.003, 0.003});
+         k.load_band.angle.assign(k.groups.size(), 0.0);
+       }},
+      {"NaN in the kept load band",
+       [=](Checkpoint& k) {
+         k.load_band.x = k.particles.x;
+         k.load_band.pos.assign(k.groups.size(), {0.003, 0.003});
+         k.load_band.angle.assign(k.groups.size(), 0.0);
+         k.load_band.x[fluid(k)].y = nan;
+       }},
       {"NaN time", [=](Checkpoint& k) { k.time = nan; }},
       {"negative time", [](Checkpoint& k) { k.time = -1; }},
       {"negative step", [](Checkpoint& k) { k.step = -5; }},

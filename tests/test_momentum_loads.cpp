@@ -4,10 +4,12 @@
 // buoyancy of a fixed cylinder in fluid at rest).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "particula/case/case.hpp"
 #include "particula/scene/scene.hpp"
@@ -288,4 +290,78 @@ TEST(MomentumLoads, TorquesOfACylinderTurningInAClosedBoxBalance) {
               rotor.torque, 4 * M_PI * 0.1 * 1e-6, walls, (rotor.torque + walls) / rotor.torque);
   EXPECT_NEAR((rotor.torque + walls) / rotor.torque, 0.0, 1e-3);
   EXPECT_NEAR(rotor.torque / -1.40e-6, 1.0, 0.01) << "the value both evaluations converge to (docs/validation.md)";
+}
+
+// numerics.load_band_motion keeps the band over steps: it is built again exactly when, at the
+// start of a step, a particle or a solid's surface has moved farther than the limit since the
+// last build (a body's bound: its displacement plus its turn times its bounding radius), or the
+// fluid was reordered; its loads stay close to those of the band built every step.
+TEST(MomentumLoads, KeptBandIsBuiltAgainExactlyWhenSomethingMovedFartherThanTheLimit) {
+  auto run = [](real motion, std::vector<Vec2>* force, std::int64_t* builds) {
+    Case c = box_with_bodies(2e-4, ForceModel::Momentum);
+    c.bodies[1].motion = BodyMotion::Prescribed;  // the ellipse slides and turns
+    c.bodies[1].velocity = {0.05, -0.03};
+    c.bodies[1].omega = 20.0;
+    c.load_band_motion = motion;
+    Scene sc = build_scene(c);
+    Solver s(sc.params, sc.domain, sc.particles, sc.groups);
+    const real limit = motion * c.d0;
+    const int kReorder = sc.params.reorder_interval;
+    int kept = 0, rebuilt_on_motion = 0;
+    for (int step = 0; step < 120; ++step) {
+      const std::vector<Vec2> x = s.particles().x;  // the positions the next step starts from
+      const std::vector<RigidGroup> g = s.groups();
+      const LoadBandState before = s.load_band_state();
+      ASSERT_FALSE(s.step().has_value());
+      force->push_back(s.groups()[5].force_pressure + s.groups()[5].force_viscous);
+      if (motion == 0) continue;
+      const LoadBandState& after = s.load_band_state();
+      ASSERT_TRUE(after.held());
+      real moved = 0;  // what the step's test saw: the largest motion since the band held before it
+      if (before.held()) {
+        for (std::size_t i = 0; i < x.size(); ++i) moved = std::max(moved, norm(x[i] - before.x[i]));
+        moved = std::max(moved, norm(g[5].pos - before.pos[5]) +
+                                    std::fabs(g[5].angle - before.angle[5]) * 1.2e-3);  // the ellipse's bound
+      }
+      bool same = before.held() && after.x.size() == before.x.size();
+      for (std::size_t i = 0; same && i < x.size(); ++i)
+        same = after.x[i].x == before.x[i].x && after.x[i].y == before.x[i].y;
+      if (same) {
+        ++kept;
+        EXPECT_LE(moved, limit) << "step " << step << ": kept after moving " << moved / c.d0 << " d0";
+      } else {
+        if (step % kReorder != 0) {  // (a reordering renumbers the particles and builds it too)
+          for (std::size_t i = 0; i < x.size(); ++i)
+            ASSERT_TRUE(after.x[i].x == x[i].x && after.x[i].y == x[i].y)
+                << "built at the step's start positions";
+          ++rebuilt_on_motion;
+          EXPECT_GT(moved, limit) << "step " << step << ": built again after moving only " << moved / c.d0
+                                  << " d0";
+        }
+      }
+    }
+    *builds = s.load_band_builds();
+    if (motion > 0) {
+      std::printf("limit %.2f d0: %d steps kept the band, %d built it again on motion, %lld builds\n", motion,
+                  kept, rebuilt_on_motion, static_cast<long long>(*builds));
+      EXPECT_GT(kept, 60) << "the band must be kept for most steps";
+      EXPECT_GT(rebuilt_on_motion, 3) << "and built again as the ellipse moves";
+    }
+  };
+  std::vector<Vec2> every, kept;
+  std::int64_t builds_every = 0, builds_kept = 0;
+  run(0, &every, &builds_every);
+  run(0.2, &kept, &builds_kept);
+  EXPECT_EQ(builds_every, 120);
+  EXPECT_LT(builds_kept, 40);
+  real scale = 0, diff = 0;
+  for (std::size_t k = 0; k < every.size(); ++k) {
+    scale = std::max(scale, norm(every[k]));
+    diff = std::max(diff, norm(kept[k] - every[k]));
+  }
+  std::printf(
+      "force on the moving ellipse: largest %.4g N/m, largest difference kept - every step %.3g (%.2f %%)\n",
+      scale, diff, 100 * diff / scale);
+  EXPECT_LT(diff, 0.05 * scale);
+  EXPECT_GT(diff, 0) << "the kept band does change the loads (else the test sees nothing)";
 }

@@ -278,7 +278,7 @@ TEST(OpenBoundary, AnOutletThatRemovesBodiesTakesOutADiscCarriedToItAndFillsItsP
   const std::vector<OutputMark> marks;
   const Checkpoint k = decode_checkpoint(
       encode_checkpoint(CheckpointView{"name = \"x\"", 1, s.time(), s.step_count(), s.counters(), marks,
-                                       s.particles(), s.groups(), s.open_flux()}),
+                                       s.particles(), s.groups(), s.open_flux(), s.load_band_state()}),
       "x.bin");
   ASSERT_TRUE(k.groups.at(2).removed);
   EXPECT_EQ(k.groups[2].removed_time, g.removed_time);

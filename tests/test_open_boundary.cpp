@@ -131,7 +131,8 @@ TEST(OpenBoundary, CheckpointsCarryCreatedParticlesAndAreChecked) {
   const std::int64_t step = s.step_count();
   const std::vector<OutputMark> marks;
   const std::string bytes = encode_checkpoint(
-      CheckpointView{toml, hash, t, step, s.counters(), marks, s.particles(), s.groups(), s.open_flux()});
+      CheckpointView{toml, hash, t, step, s.counters(), marks, s.particles(), s.groups(), s.open_flux(),
+                     s.load_band_state()});
   const Checkpoint k = decode_checkpoint(bytes, "x.bin");
   EXPECT_EQ(k.particles.next_id, s.particles().next_id);
   EXPECT_TRUE(k.particles.id == s.particles().id);

@@ -237,6 +237,53 @@ TEST(Resume, CheckpointOfAnotherCaseIsRefused) {
   EXPECT_NE(h.output.find("not a particula run directory"), std::string::npos) << h.output;
 }
 
+TEST(Resume, KeptLoadBandResumesBitwiseIdentical) {
+  // numerics.load_band_motion keeps the band of the momentum loads over steps: the checkpoint at
+  // t = 0.008 s falls between two of its builds (its build state is older than the particles), and
+  // the resumed run builds it again from that state. A cylinder falling onto the floor with
+  // friction, into contact, as above.
+  const fs::path dir = fresh_dir("resume_kept_band");
+  const fs::path cylinder = fs::path(PARTICULA_SOURCE_DIR) / "cases" / "falling_cylinder.toml";
+  const auto args = [&](const fs::path& out, const std::string& t_end) {
+    std::vector<std::string> a{"run",        cylinder.string(), "--out", out.string(), "--quiet",
+                               "--no-plots", "--threads",       "1",     "--set",      "time.end=" + t_end};
+    for (const char* s :
+         {"resolution.d0=2e-4", "domain.max=[0.02,0.01]", "wall.1.to=[0.02,0.01]", "wall.2.from=[0.02,0.01]",
+          "wall.2.to=[0.0,0.01]", "wall.3.from=[0.0,0.01]", "collision.model=spring_dashpot",
+          "collision.stiffness=0", "collision.friction=0.3", "body.0.center=[0.01,0.00137]",
+          "body.0.velocity=[0.01,-0.01]", "numerics.load_band_motion=0.2", "output.interval=0.0005",
+          "output.snapshots=false"}) {
+      a.push_back("--set");
+      a.push_back(s);
+    }
+    return a;
+  };
+  const auto full = cli(args(dir / "full", "0.011"));
+  ASSERT_EQ(full.code, 0) << full.output;
+  const auto half = cli(args(dir / "half", "0.008"));
+  ASSERT_EQ(half.code, 0) << half.output;
+  const fs::path state = dir / "half" / "checkpoint" / "state.bin";
+  const particula::Checkpoint k = particula::decode_checkpoint(read_text(state), state);
+  ASSERT_TRUE(k.load_band.held());
+  bool older = false;  // the band at the checkpoint was built at an earlier step
+  for (std::size_t i = 0; i < k.particles.x.size(); ++i)
+    older = older || k.load_band.x[i].x != k.particles.x[i].x || k.load_band.x[i].y != k.particles.x[i].y;
+  EXPECT_TRUE(older);
+  const auto resumed = cli({"resume", (dir / "half").string(), "--set", "time.end=0.011", "--threads", "1",
+                            "--quiet", "--no-plots"});
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  const std::string bodies = read_text(dir / "full" / "bodies.csv");
+  EXPECT_NE(bodies.find("0.008,0,"), std::string::npos);
+  EXPECT_TRUE(bodies == read_text(dir / "half" / "bodies.csv"));
+  EXPECT_TRUE(read_text(dir / "full" / "checkpoint" / "state.bin") == read_text(state));
+  // kept: fewer builds than steps
+  const std::string summary = read_text(dir / "full" / "summary.json");
+  const auto builds = summary.find("\"load_band_builds\": "), steps = summary.find("\"steps\": ");
+  ASSERT_NE(builds, std::string::npos) << summary;
+  ASSERT_NE(steps, std::string::npos) << summary;
+  EXPECT_LT(std::stol(summary.substr(builds + 20)), std::stol(summary.substr(steps + 9)) / 2) << summary;
+}
+
 TEST(Resume, TamperedCheckpointWithAValidChecksumIsRefusedWithExitTwo) {
   // Every index, count, kind, id, size and identity edited in turn (tests/checkpoint_tamper.hpp),
   // written with a valid checksum: `resume` refuses each with exit code 2 and never crashes.

@@ -90,6 +90,7 @@ std::unique_ptr<Simulation> from_checkpoint(const fs::path& file, const std::vec
                                          SolverStart::Restart, k.time, k.step);
   sim->solver->set_counters(k.counters);
   sim->solver->set_open_flux(k.open_flux);
+  sim->solver->set_load_band_state(k.load_band);
   return sim;
 }
 
@@ -101,7 +102,7 @@ void write_simulation_checkpoint(const Simulation& sim, const fs::path& file) {
   const std::int64_t step = s.step_count();
   const std::vector<OutputMark> no_marks;
   write_checkpoint(file, CheckpointView{toml, sim.case_hash, t, step, s.counters(), no_marks, s.particles(),
-                                        s.groups(), s.open_flux()});
+                                        s.groups(), s.open_flux(), s.load_band_state()});
 }
 
 /// One step of at most max_dt (0: the stable step), or with `land_at` one that ends exactly at that

@@ -35,6 +35,9 @@ static_assert(sizeof(SolverCounters) == kSolverCountersFields * sizeof(std::int6
 static_assert(checkpoint_detail::aggregate_field_count<OpenFlux>() == kOpenFluxFields &&
                   sizeof(OpenFlux) == kOpenFluxFields * 8,
               "OpenFlux changed: update open_flux_fields() and kOpenFluxFields in run/checkpoint.hpp");
+static_assert(
+    checkpoint_detail::aggregate_field_count<LoadBandState>() == kLoadBandStateFields,
+    "LoadBandState changed: update load_band_fields() and kLoadBandStateFields in run/checkpoint.hpp");
 
 namespace {
 
@@ -162,6 +165,12 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
         f.body_fill_mass < 0)
       fail("open-boundary flux");
 
+  // The kept band's build state: every particle and every group, or nothing.
+  const LoadBandState& band = c.load_band;
+  if ((band.held() || !band.pos.empty() || !band.angle.empty()) &&
+      (band.x.size() != n || band.pos.size() != n_groups || band.angle.size() != n_groups))
+    fail("kept load band of the wrong size");
+
   for (const OutputMark& m : c.marks)
     if (std::isnan(m.last_scheduled) || m.last_scheduled == std::numeric_limits<real>::infinity() ||
         m.last_scheduled > c.time * (1 + 1e-9) + 1e-300)
@@ -187,6 +196,11 @@ void check_values(const Checkpoint& c, const std::function<void(const std::strin
     if (g.motion == Motion::Free && !(g.mass > 0 && g.inertia > 0 && g.area > 0))
       fail(fmt::format("free body without mass (rigid group {})", k));
   }
+  const LoadBandState& band = c.load_band;
+  if (!std::all_of(band.x.begin(), band.x.end(), [](Vec2 v) { return finite(v); }) ||
+      !std::all_of(band.pos.begin(), band.pos.end(), [](Vec2 v) { return finite(v); }) ||
+      !std::all_of(band.angle.begin(), band.angle.end(), [](real v) { return finite(v); }))
+    fail("non-finite kept load band");
   for (std::size_t i = 0; i < n; ++i) {
     if (i < nb && (!finite(P.local[i]) || !finite(P.normal_local[i]) || !finite(P.normal[i]) ||
                    !finite(P.acc[i]) || !std::isfinite(P.ds[i]) || P.ds[i] < 0))
@@ -278,7 +292,7 @@ std::filesystem::path checkpoint_path(const std::filesystem::path& run_dir) {
 
 std::string encode_checkpoint(const Checkpoint& c) {
   return encode_checkpoint(CheckpointView{c.case_toml, c.case_hash, c.time, c.step, c.counters, c.marks,
-                                          c.particles, c.groups, c.open_flux});
+                                          c.particles, c.groups, c.open_flux, c.load_band});
 }
 
 std::string encode_checkpoint(const CheckpointView& c) {
@@ -293,6 +307,7 @@ std::string encode_checkpoint(const CheckpointView& c) {
   }
   ar(static_cast<std::uint64_t>(c.open_flux.size()));
   for (const OpenFlux& f : c.open_flux) open_flux_fields(ar, f);
+  load_band_fields(ar, c.load_band);
   const std::string payload = ar.take();
 
   std::string out;
@@ -347,6 +362,7 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::filesystem::path
   }
   c.open_flux.resize(ar.read_size(1));
   for (OpenFlux& f : c.open_flux) open_flux_fields(ar, f);
+  load_band_fields(ar, c.load_band);
   if (ar.remaining() != 0) fail("corrupted (unexpected data after the last field)");
   check_consistency(c, what);
   return c;
@@ -354,7 +370,7 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::filesystem::path
 
 void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c) {
   write_checkpoint(file, CheckpointView{c.case_toml, c.case_hash, c.time, c.step, c.counters, c.marks,
-                                        c.particles, c.groups, c.open_flux});
+                                        c.particles, c.groups, c.open_flux, c.load_band});
 }
 
 void write_checkpoint(const std::filesystem::path& file, const CheckpointView& c) {

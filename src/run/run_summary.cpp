@@ -82,6 +82,7 @@ io::JsonObject run_summary(const Session& s, const RunEnd& end, std::optional<do
   io::JsonObject guards;
   for (const auto& [name, count] : guard_events(solver.counters())) guards.set(name, count);
   summary.set("guard_events", guards);
+  if (solver.params().load_band_motion > 0) summary.set("load_band_builds", solver.load_band_builds());
   if (!solver.open_flux().empty()) {
     summary.set("open_boundaries", open_boundary_summary(solver));
     std::vector<io::JsonObject> removed;

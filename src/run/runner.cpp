@@ -92,8 +92,9 @@ void save_checkpoint(const fs::path& file, const Session& s) {
   const real t = solver.time();
   const std::int64_t step = solver.step_count();
   const std::vector<OutputMark> marks = s.outputs->marks();
-  write_checkpoint(file, CheckpointView{toml, s.case_hash, t, step, solver.counters(), marks,
-                                        solver.particles(), solver.groups(), solver.open_flux()});
+  write_checkpoint(file,
+                   CheckpointView{toml, s.case_hash, t, step, solver.counters(), marks, solver.particles(),
+                                  solver.groups(), solver.open_flux(), solver.load_band_state()});
 }
 
 /// The run has written its initial state: when it replaces an old run directory, a checkpoint
@@ -488,6 +489,7 @@ int resume_command(const ResumeOptions& opt) {
                                         SolverStart::Restart, k.time, k.step);
     s.solver->set_counters(k.counters);
     s.solver->set_open_flux(k.open_flux);
+    s.solver->set_load_band_state(k.load_band);
     s.outputs = std::make_unique<RunOutputs>(s.dir, s.c, k.marks, k.time, stop_requested);
     if (stop_requested()) return interrupted_before_start(s, *rep, "the run directory is as it was");
     return run_loop(s, *rep, opt.plots);

@@ -94,6 +94,7 @@ PhysicsParams physics_params(const Case& c) {
   p.shifting_beta = c.shifting_beta;
   p.odd_even_damping = c.odd_even_damping;
   p.film_gap = c.film_gap;
+  p.load_band_motion = c.load_band_motion * c.d0;
   p.surface_guard = c.surface_guard;
   p.wall_pressure_sweeps = c.wall_pressure_sweeps;
   p.rho_min_ratio = c.rho_min_ratio;

@@ -170,7 +170,8 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
     dev_->upload(P_);
     device_current_ = true;
   }
-  if (prm_.reorder_interval > 0 && steps_ % prm_.reorder_interval == 0) {
+  const bool reordered = prm_.reorder_interval > 0 && steps_ % prm_.reorder_interval == 0;
+  if (reordered) {
     PhaseTimer timer(times_.neighbors);
     if (dev_)
       dev_->reorder_fluid();
@@ -188,7 +189,7 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   open_min_distance();
   if (prm_.momentum_force) {
     PhaseTimer timer(times_.bodies);
-    build_load_band();
+    update_load_band(reordered);
   }
   {
     PhaseTimer timer(times_.bodies);

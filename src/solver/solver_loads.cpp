@@ -39,10 +39,10 @@ void Solver::group_loads() {
   }
 }
 
-WallPiece Solver::wall_now(std::size_t k) const {
+WallPiece Solver::wall_at(std::size_t k, real angle) const {
   const RigidGroup& g = groups_[k];
-  if (g.angle == g.angle0) return prm_.walls[k];
-  return prm_.walls[k].moved(g.pos0, g.angle - g.angle0, Vec2{});
+  if (angle == g.angle0) return prm_.walls[k];
+  return prm_.walls[k].moved(g.pos0, angle - g.angle0, Vec2{});
 }
 
 bool Solver::offer_near_solid(Vec2 x, real reach, std::size_t k, NearSolid& out) const {
@@ -62,7 +62,7 @@ bool Solver::offer_near_solid(Vec2 x, real reach, std::size_t k, NearSolid& out)
     n = d > 1e-12 * w.length() ? (xi - near.point) / d : near.normal;
   } else {
     const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
-    const Vec2 rel = domain_.separation(x, g.pos);
+    const Vec2 rel = domain_.separation(x, band_pos_[k]);
     // Most of the bodies offered lie beyond the reach: those are rejected from the squared
     // distance, without a square root. The margin keeps the decision that of norm(rel) > outer.
     const real outer = b.shape.bounding_radius() + reach;
@@ -78,17 +78,16 @@ bool Solver::offer_near_solid(Vec2 x, real reach, std::size_t k, NearSolid& out)
 }
 
 void Solver::place_solids_for_band() {
-  // Each wall as it stands now and each body's cos / sin of its angle, once a step rather than
-  // once per fluid particle (the same values: the band is bitwise what it was when each
+  // Each wall at the band's pose and each body's cos / sin of its angle, once a build rather
+  // than once per fluid particle (the same values: the band is bitwise what it was when each
   // particle computed them).
   band_walls_.clear();
   band_turn_.assign(groups_.size(), Vec2{});
   for (std::size_t k = 0; k < groups_.size(); ++k) {
-    const RigidGroup& g = groups_[k];
-    if (g.is_wall)
-      band_walls_.push_back(g.angle == g.angle0 ? prm_.walls[k] : wall_now(k));
+    if (groups_[k].is_wall)
+      band_walls_.push_back(wall_at(k, band_angle_[k]));
     else
-      band_turn_[k] = Vec2{std::cos(g.angle), std::sin(g.angle)};
+      band_turn_[k] = Vec2{std::cos(band_angle_[k]), std::sin(band_angle_[k])};
   }
 }
 
@@ -101,7 +100,7 @@ void Solver::bin_bodies_for_band(real reach) {
     const RigidGroup& g = groups_[k];
     if (g.is_wall || g.removed) continue;
     bound = std::max(bound, prm_.bodies[static_cast<std::size_t>(g.body)].shape.bounding_radius());
-    band_body_items_.push_back({static_cast<std::uint32_t>(k), g.pos});
+    band_body_items_.push_back({static_cast<std::uint32_t>(k), band_pos_[k]});
   }
   band_bodies_.build(domain_, bound + reach, band_body_items_);
 }
@@ -118,7 +117,7 @@ int Solver::near_solids(Vec2 x, real reach, NearSolid* out, int max) const {
   return count;
 }
 
-real Solver::band_cell_area(std::size_t i, const std::vector<Vec2>& x) const {
+real Solver::band_cell_area(std::size_t i, const std::vector<Vec2>& x, const NeighborList& nl) const {
   const std::size_t nb = P_.n_boundary;
   Vec2 d[kVoronoiMaxVertices - 4];
   int count = 0;
@@ -135,17 +134,89 @@ real Solver::band_cell_area(std::size_t i, const std::vector<Vec2>& x) const {
                     band_grid_.cell_start().data(), band_grid_.cell_of()[i], static_cast<std::uint32_t>(i),
                     [&](std::uint32_t j, real) { take(j); });
   } else {
-    // The step's neighbour list, built at these positions from the same cells: the same
-    // neighbours within h in the same order (visit_neighbors), without a second search.
-    for (std::uint32_t s = nl_.start[i]; s < nl_.start[i + 1]; ++s) take(nl_.j[s]);
+    // The neighbour list built at these positions from the same cells: the same neighbours
+    // within h in the same order (visit_neighbors), without a second search.
+    for (std::uint32_t s = nl.start[i]; s < nl.start[i + 1]; ++s) take(nl.j[s]);
   }
   return closed_by_fluid ? voronoi_cell_area(d, count, prm_.h) : 0;
 }
 
-void Solver::build_load_band() {
-  const real reach = kLoadBandReach * prm_.h;
-  const std::vector<Vec2>& x = dev_ ? band_x_ : P_.x;
+void Solver::set_load_band_state(const LoadBandState& s) {
+  band_built_ = s;
+  band_restore_ = s.held();
+}
+
+bool Solver::load_band_moved(const std::vector<Vec2>& x) const {
+  // A solid's surface moves at most by its displacement plus its turn times its farthest point
+  // from its pivot (a circle's turn does not move its surface); a wall turns about its pivot.
+  const real limit = prm_.load_band_motion;
+  for (std::size_t k = 0; k < groups_.size(); ++k) {
+    const RigidGroup& g = groups_[k];
+    const real turn = std::fabs(g.angle - band_built_.angle[k]);
+    real moved = 0;
+    if (g.is_wall) {
+      const WallPiece& w = prm_.walls[k];
+      moved = turn * (norm(domain_.separation(w.middle(), g.pos0)) + 0.5 * w.length());
+    } else {
+      const Shape& shape = prm_.bodies[static_cast<std::size_t>(g.body)].shape;
+      moved = norm(domain_.separation(g.pos, band_built_.pos[k])) +
+              (shape.kind() == ShapeKind::Circle ? 0 : turn * shape.bounding_radius());
+    }
+    if (!(moved <= limit)) return true;
+  }
+  // every particle, the surface particles too: they close or open the fluid's Voronoi cells
+  const std::size_t n = x.size();
+  real largest = 0;
+#pragma omp parallel for schedule(static) reduction(max : largest)
+  for (std::size_t i = 0; i < n; ++i)
+    largest = std::max(largest, norm2(domain_.separation(x[i], band_built_.x[i])));
+  return !(largest <= limit * limit);
+}
+
+void Solver::update_load_band(bool reordered) {
+  // The band's phi_B, grad phi_B, areas and films change with the particles' and the solids'
+  // positions only; kept (numerics.load_band_motion > 0), it stands for the positions it was
+  // built at until something has moved farther than that. A reordering renumbers the
+  // particles, an open boundary changes them every step: both rebuild it.
+  const bool keep = prm_.load_band_motion > 0 && prm_.open.empty();
+  const std::size_t ng = groups_.size();
   if (dev_) dev_->download_positions(band_x_);
+  const std::vector<Vec2>& x = dev_ ? band_x_ : P_.x;
+  if (keep && band_restore_) {
+    // a checkpoint's band: built again where the uninterrupted run built it
+    band_restore_ = false;
+    if (band_built_.x.size() == x.size() && band_built_.pos.size() == ng && band_built_.angle.size() == ng) {
+      band_pos_ = band_built_.pos;
+      band_angle_ = band_built_.angle;
+      CellGrid grid = grid_;
+      NeighborList nl;
+      if (!dev_) build_neighbor_list(band_built_.x, domain_, kernel_, grid, nl);
+      build_load_band(band_built_.x, nl);
+    } else {
+      band_built_ = LoadBandState{};
+    }
+  }
+  if (keep && band_built_.held() && !reordered && band_built_.x.size() == x.size() && !load_band_moved(x))
+    return;
+  band_pos_.resize(ng);
+  band_angle_.resize(ng);
+  for (std::size_t k = 0; k < ng; ++k) {
+    band_pos_[k] = groups_[k].pos;
+    band_angle_[k] = groups_[k].angle;
+  }
+  build_load_band(x, nl_);
+  if (keep) {
+    band_built_.x = x;
+    band_built_.pos = band_pos_;
+    band_built_.angle = band_angle_;
+  } else {
+    band_built_ = LoadBandState{};
+  }
+}
+
+void Solver::build_load_band(const std::vector<Vec2>& x, const NeighborList& nl) {
+  ++band_builds_;
+  const real reach = kLoadBandReach * prm_.h;
   const std::size_t nb = P_.n_boundary, nf = x.size() - nb;
   constexpr int kMaxNear = 16;
   bin_bodies_for_band(reach);
@@ -173,7 +244,7 @@ void Solver::build_load_band() {
       // buffer particles of open boundaries are set, not integrated: they carry no momentum balance
       const int count = in_load_band(nb + f) ? near_solids(x[nb + f], reach, near, kMaxNear) : 0;
       if (count == 0) continue;
-      const real area = band_cell_area(nb + f, x);
+      const real area = band_cell_area(nb + f, x, nl);
       weigh_near_solids(near, count, reach);
       real S;
       Vec2 gradS;

@@ -7,15 +7,15 @@
 //   u32       byte-order mark 0x01020304 (values are in the writer's byte order)
 //   u64       payload size in bytes
 //   payload   case TOML text, case identity hash, time, step, SolverCounters, Particles,
-//             RigidGroups, output marks, open-boundary fluxes
+//             RigidGroups, output marks, open-boundary fluxes, the kept load band's build state
 //   u64       FNV-1a 64 checksum of the payload
 //
 // Reading refuses, with an io::IoError naming the file, a wrong magic, another format
 // version, another byte order, a truncated file, a checksum mismatch, and content whose parts
 // do not fit each other (array sizes, particle kinds and groups, group ranges and body indices,
-// dummy sources, particle ids, output marks). check_checkpoint_fits_case() then checks it
-// against the case it is resumed with and checks its values, so that a checkpoint, however made,
-// is either refused or safe to run.
+// dummy sources, particle ids, output marks, the kept band's arrays). check_checkpoint_fits_case() then
+// checks it against the case it is resumed with and checks its values, so that a checkpoint, however made, is
+// either refused or safe to run.
 #pragma once
 
 #include <cstddef>
@@ -33,7 +33,7 @@
 namespace particula {
 
 /// Bump when the layout or any field list below changes; older files are then refused.
-inline constexpr std::uint32_t kCheckpointVersion = 12;
+inline constexpr std::uint32_t kCheckpointVersion = 13;
 
 /// When an output stream ("bodies", "snapshots", "probe:<name>") was last written on its
 /// regular schedule. A resumed run drops rows after this time (the extra final-state rows of an
@@ -54,6 +54,7 @@ struct Checkpoint {
   Particles particles;
   std::vector<RigidGroup> groups;
   std::vector<OpenFlux> open_flux;  // one per open boundary (inlets, then outlets)
+  LoadBandState load_band;          // where the kept load band was built (empty: none kept)
 };
 
 /// The same content by reference, so that a running solver's state is written without a copy.
@@ -67,6 +68,7 @@ struct CheckpointView {
   const Particles& particles;
   const std::vector<RigidGroup>& groups;
   const std::vector<OpenFlux>& open_flux;
+  const LoadBandState& load_band;
 };
 
 /// The identity of a run's case: the FNV-1a 64 hash of the resolved case text (what particula
@@ -109,6 +111,7 @@ inline constexpr std::size_t kParticlesFields = 16;  // n_boundary, next_id + 14
 inline constexpr std::size_t kRigidGroupFields = 28;
 inline constexpr std::size_t kSolverCountersFields = 12;
 inline constexpr std::size_t kOpenFluxFields = 6;
+inline constexpr std::size_t kLoadBandStateFields = 3;
 
 template <class Ar, class P>
 void particles_fields(Ar& ar, P& p) {
@@ -188,6 +191,13 @@ void open_flux_fields(Ar& ar, F& f) {
   ar(f.deleted);
   ar(f.bodies_removed);
   ar(f.body_fill_mass);
+}
+
+template <class Ar, class B>
+void load_band_fields(Ar& ar, B& b) {
+  ar(b.x);
+  ar(b.pos);
+  ar(b.angle);
 }
 
 namespace checkpoint_detail {

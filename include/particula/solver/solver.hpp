@@ -70,6 +70,9 @@ struct PhysicsParams {
   int wall_pressure_sweeps = 1;
   real rho_min_ratio = 0.5, rho_max_ratio = 2.0;
   int reorder_interval = 50;  // steps between cell reorderings of the fluid block
+  // numerics.load_band_motion (m): the band of the momentum loads is kept until a particle or a
+  // solid surface has moved this far since it was built (0: built every step)
+  real load_band_motion = 0;
   std::vector<BodyParams> bodies;
   std::vector<WallPiece> walls;  // at t = 0 (a turning wall: Solver::wall_now)
   // contacts (bodies/collision.hpp; docs/method-notes.md, Contacts)
@@ -160,6 +163,17 @@ struct Failure {
   Vec2 position;
 };
 
+/// Where the kept band of the momentum loads was last built (numerics.load_band_motion > 0):
+/// every particle's position and every rigid group's position and angle then. Checkpoints carry
+/// it, so that a resumed run rebuilds the band the uninterrupted run holds at that step
+/// (Solver::set_load_band_state). Empty while no band is kept.
+struct LoadBandState {
+  std::vector<Vec2> x;      // every particle (boundary block first), in the particle order of the build
+  std::vector<Vec2> pos;    // every rigid group
+  std::vector<real> angle;  // every rigid group
+  bool held() const { return !x.empty(); }
+};
+
 /// How a solver starts: from a freshly built scene (boundary pressures are initialized from
 /// P.20) or from a checkpointed state (taken exactly as it is, so a resumed run is bitwise
 /// identical to an uninterrupted one).
@@ -212,6 +226,13 @@ class Solver {
   const std::vector<OpenFlux>& open_flux() const { return open_flux_; }
   /// Restores the fluxes of a checkpoint (one per open boundary).
   void set_open_flux(const std::vector<OpenFlux>& f) { open_flux_ = f; }
+  /// Where the kept load band was built (checkpoints carry it); empty while none is kept.
+  const LoadBandState& load_band_state() const { return band_built_; }
+  /// Restores a checkpoint's kept band: the next step builds it again from the positions and
+  /// poses it was built from (the same band, bitwise), then tests the motion since as always.
+  void set_load_band_state(const LoadBandState& s);
+  /// Builds of the load band by this solver (a kept band is built less often than once a step).
+  std::int64_t load_band_builds() const { return band_builds_; }
 
   /// A body taken out of the run at an outlet in the last step (remove_bodies_at_outlets).
   struct BodyRemoval {
@@ -259,9 +280,17 @@ class Solver {
   /// Hydrodynamic loads of every group for the current stage: P.26-P.27 (`numerics.force =
   /// paper`) or the band momentum balance (momentum_loads.hpp).
   void group_loads();
-  /// The band entries of this step (phi_B and its gradient at each fluid particle near a solid;
-  /// positions are frozen during the stages), in particle order.
-  void build_load_band();
+  /// The band entries (phi_B and its gradient at each fluid particle near a solid; positions
+  /// are frozen during the stages), in particle order, for the particles at positions x and the
+  /// solids at the poses band_pos_, band_angle_; the CPU's Voronoi cells from neighbour list nl,
+  /// built at x (the GPU backend bins x itself).
+  void build_load_band(const std::vector<Vec2>& x, const NeighborList& nl);
+  /// The band of this step: built every step, or with numerics.load_band_motion kept until
+  /// load_band_moved() (or rebuilt from a checkpoint's LoadBandState).
+  void update_load_band(bool reordered);
+  /// Whether a particle or a solid surface has moved more than numerics.load_band_motion since
+  /// the kept band was built (positions x now).
+  bool load_band_moved(const std::vector<Vec2>& x) const;
   /// Each band entry's slot among the groups of its block of kBandBlock entries, and each
   /// block's groups (band_block_first_, band_slot_group_).
   void assign_band_slots();
@@ -276,15 +305,17 @@ class Solver {
   /// Voronoi cell among the particles within h (the step's neighbour list; band_grid_ with the
   /// GPU backend), or 0 (its volume m / rho) when a
   /// surface particle is within h or the cell is not closed.
-  real band_cell_area(std::size_t i, const std::vector<Vec2>& x) const;
+  real band_cell_area(std::size_t i, const std::vector<Vec2>& x, const NeighborList& nl) const;
   /// Solid k's distance and its gradient at x into `out` when x is within `reach` of it.
   bool offer_near_solid(Vec2 x, real reach, std::size_t k, NearSolid& out) const;
-  /// The walls as they stand now (band_walls_) and the bodies' cos / sin of their angles
-  /// (band_turn_), for offer_near_solid, once a step.
+  /// The walls at the band's poses (band_walls_) and the bodies' cos / sin of their angles
+  /// (band_turn_), for offer_near_solid, once a build.
   void place_solids_for_band();
   /// Wall group k's geometry now (a turning wall rotated about its pivot; a sliding wall runs
   /// along a periodic axis and keeps its line).
-  WallPiece wall_now(std::size_t k) const;
+  WallPiece wall_now(std::size_t k) const { return wall_at(k, groups_[k].angle); }
+  /// Wall group k's geometry at angle `angle` of its group.
+  WallPiece wall_at(std::size_t k, real angle) const;
   /// The bodies binned into cells of (largest bounding radius + reach), once a step.
   void bin_bodies_for_band(real reach);
   /// The band momentum balance of every group (numerics.force = momentum).
@@ -453,6 +484,11 @@ class Solver {
   CellGrid band_grid_;  // GPU backend: every particle binned once a step for band_cell_area
   std::vector<WallPiece> band_walls_;  // wall group k as it stands this step (walls come first)
   std::vector<Vec2> band_turn_;        // body group k: cos and sin of its angle this step
+  std::vector<Vec2> band_pos_;         // group k's position the band is built at
+  std::vector<real> band_angle_;       // group k's angle the band is built at
+  LoadBandState band_built_;           // numerics.load_band_motion: where the kept band was built
+  bool band_restore_ = false;          // band_built_ came from a checkpoint: build the band from it
+  std::int64_t band_builds_ = 0;
   std::vector<GroupMotion> motions_;
 
   // contacts of the step (spring-dashpot): the groups a (a body) and b (a body or a wall), the
