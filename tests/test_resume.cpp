@@ -51,6 +51,52 @@ void expect_same_outputs(const fs::path& a, const fs::path& b) {
   EXPECT_EQ(files_b, files_a) << "snapshots after the checkpoint are removed on resume";
 }
 
+/// A cylinder thrown at the floor with friction (spring-dashpot contact, in contact from about
+/// t = 0.007 s), coarse, one thread, with `extra` overrides: run to 0.011 s into DIR/full and to
+/// 0.008 s into DIR/half (the checkpoint taken while it is in contact).
+void run_contact_case(const fs::path& dir, const std::vector<std::string>& extra) {
+  const fs::path cylinder = fs::path(PARTICULA_SOURCE_DIR) / "cases" / "falling_cylinder.toml";
+  const auto args = [&](const fs::path& out, const std::string& t_end) {
+    std::vector<std::string> a{"run",        cylinder.string(), "--out", out.string(), "--quiet",
+                               "--no-plots", "--threads",       "1",     "--set",      "time.end=" + t_end};
+    std::vector<std::string> sets{"resolution.d0=2e-4",
+                                  "domain.max=[0.02,0.01]",
+                                  "wall.1.to=[0.02,0.01]",
+                                  "wall.2.from=[0.02,0.01]",
+                                  "wall.2.to=[0.0,0.01]",
+                                  "wall.3.from=[0.0,0.01]",
+                                  "collision.model=spring_dashpot",
+                                  "collision.stiffness=0",
+                                  "collision.friction=0.3",
+                                  "body.0.center=[0.01,0.00137]",
+                                  "body.0.velocity=[0.01,-0.01]",
+                                  "output.interval=0.0005",
+                                  "output.snapshots=false"};
+    sets.insert(sets.end(), extra.begin(), extra.end());
+    for (const std::string& s : sets) {
+      a.push_back("--set");
+      a.push_back(s);
+    }
+    return a;
+  };
+  const auto full = cli(args(dir / "full", "0.011"));
+  ASSERT_EQ(full.code, 0) << full.output;
+  const auto half = cli(args(dir / "half", "0.008"));
+  ASSERT_EQ(half.code, 0) << half.output;
+}
+
+/// Resumes DIR/half (run_contact_case) to 0.011 s: its bodies.csv and final checkpoint are those of DIR/full.
+void expect_contact_resume_identical(const fs::path& dir) {
+  const auto resumed = cli({"resume", (dir / "half").string(), "--set", "time.end=0.011", "--threads", "1",
+                            "--quiet", "--no-plots"});
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  const std::string bodies = read_text(dir / "full" / "bodies.csv");
+  EXPECT_NE(bodies.find("0.008,0,"), std::string::npos);
+  EXPECT_TRUE(bodies == read_text(dir / "half" / "bodies.csv"));
+  EXPECT_TRUE(read_text(dir / "full" / "checkpoint" / "state.bin") ==
+              read_text(dir / "half" / "checkpoint" / "state.bin"));
+}
+
 }  // namespace
 
 TEST(Resume, HalfRunResumedToTheEndIsBitwiseIdentical) {
@@ -74,36 +120,11 @@ TEST(Resume, HalfRunResumedToTheEndIsBitwiseIdentical) {
 }
 
 TEST(Resume, BodyInContactResumesBitwiseIdentical) {
-  // A cylinder landing on the floor with friction (spring-dashpot contact), the checkpoint taken
-  // while it is in contact: the contact episode's held approach speed (RigidGroup::contact_speed)
-  // and the collision torque travel with the checkpoint.
+  // The contact episode's held approach speed (RigidGroup::contact_speed) and the collision
+  // torque travel with the checkpoint, taken while the cylinder is in contact.
   const fs::path dir = fresh_dir("resume_contact");
-  const fs::path cylinder = fs::path(PARTICULA_SOURCE_DIR) / "cases" / "falling_cylinder.toml";
-  const auto args = [&](const fs::path& out, const std::string& t_end) {
-    std::vector<std::string> a{"run", cylinder.string(), "--out", out.string(), "--quiet", "--no-plots",
-                               "--threads", "1", "--set", "time.end=" + t_end};
-    for (const char* s : {"resolution.d0=2e-4", "domain.max=[0.02,0.01]", "wall.1.to=[0.02,0.01]",
-                          "wall.2.from=[0.02,0.01]", "wall.2.to=[0.0,0.01]", "wall.3.from=[0.0,0.01]",
-                          "collision.model=spring_dashpot", "collision.stiffness=0", "collision.friction=0.3",
-                          "body.0.center=[0.01,0.00137]", "body.0.velocity=[0.01,-0.01]",
-                          "numerics.rhie_chow_factor=2", "output.interval=0.0005", "output.snapshots=false"}) {
-      a.push_back("--set");
-      a.push_back(s);
-    }
-    return a;
-  };
-  const auto full = cli(args(dir / "full", "0.011"));
-  ASSERT_EQ(full.code, 0) << full.output;
-  const auto half = cli(args(dir / "half", "0.008"));  // in contact from about t = 0.007 s
-  ASSERT_EQ(half.code, 0) << half.output;
-  const auto resumed = cli({"resume", (dir / "half").string(), "--set", "time.end=0.011", "--threads", "1",
-                            "--quiet", "--no-plots"});
-  ASSERT_EQ(resumed.code, 0) << resumed.output;
-  const std::string bodies = read_text(dir / "full" / "bodies.csv");
-  EXPECT_NE(bodies.find("0.008,0,"), std::string::npos);
-  EXPECT_TRUE(bodies == read_text(dir / "half" / "bodies.csv"));
-  EXPECT_TRUE(read_text(dir / "full" / "checkpoint" / "state.bin") ==
-              read_text(dir / "half" / "checkpoint" / "state.bin"));
+  run_contact_case(dir, {"numerics.rhie_chow_factor=2"});
+  expect_contact_resume_identical(dir);
 }
 
 TEST(Resume, RunInterruptedBySigintResumesBitwiseIdentical) {
@@ -240,28 +261,9 @@ TEST(Resume, CheckpointOfAnotherCaseIsRefused) {
 TEST(Resume, KeptLoadBandResumesBitwiseIdentical) {
   // numerics.load_band_motion keeps the band of the momentum loads over steps: the checkpoint at
   // t = 0.008 s falls between two of its builds (its build state is older than the particles), and
-  // the resumed run builds it again from that state. A cylinder falling onto the floor with
-  // friction, into contact, as above.
+  // the resumed run builds it again from that state. The contact case above.
   const fs::path dir = fresh_dir("resume_kept_band");
-  const fs::path cylinder = fs::path(PARTICULA_SOURCE_DIR) / "cases" / "falling_cylinder.toml";
-  const auto args = [&](const fs::path& out, const std::string& t_end) {
-    std::vector<std::string> a{"run",        cylinder.string(), "--out", out.string(), "--quiet",
-                               "--no-plots", "--threads",       "1",     "--set",      "time.end=" + t_end};
-    for (const char* s :
-         {"resolution.d0=2e-4", "domain.max=[0.02,0.01]", "wall.1.to=[0.02,0.01]", "wall.2.from=[0.02,0.01]",
-          "wall.2.to=[0.0,0.01]", "wall.3.from=[0.0,0.01]", "collision.model=spring_dashpot",
-          "collision.stiffness=0", "collision.friction=0.3", "body.0.center=[0.01,0.00137]",
-          "body.0.velocity=[0.01,-0.01]", "numerics.load_band_motion=0.2", "output.interval=0.0005",
-          "output.snapshots=false"}) {
-      a.push_back("--set");
-      a.push_back(s);
-    }
-    return a;
-  };
-  const auto full = cli(args(dir / "full", "0.011"));
-  ASSERT_EQ(full.code, 0) << full.output;
-  const auto half = cli(args(dir / "half", "0.008"));
-  ASSERT_EQ(half.code, 0) << half.output;
+  run_contact_case(dir, {"numerics.load_band_motion=0.2"});
   const fs::path state = dir / "half" / "checkpoint" / "state.bin";
   const particula::Checkpoint k = particula::decode_checkpoint(read_text(state), state);
   ASSERT_TRUE(k.load_band.held());
@@ -269,13 +271,7 @@ TEST(Resume, KeptLoadBandResumesBitwiseIdentical) {
   for (std::size_t i = 0; i < k.particles.x.size(); ++i)
     older = older || k.load_band.x[i].x != k.particles.x[i].x || k.load_band.x[i].y != k.particles.x[i].y;
   EXPECT_TRUE(older);
-  const auto resumed = cli({"resume", (dir / "half").string(), "--set", "time.end=0.011", "--threads", "1",
-                            "--quiet", "--no-plots"});
-  ASSERT_EQ(resumed.code, 0) << resumed.output;
-  const std::string bodies = read_text(dir / "full" / "bodies.csv");
-  EXPECT_NE(bodies.find("0.008,0,"), std::string::npos);
-  EXPECT_TRUE(bodies == read_text(dir / "half" / "bodies.csv"));
-  EXPECT_TRUE(read_text(dir / "full" / "checkpoint" / "state.bin") == read_text(state));
+  expect_contact_resume_identical(dir);
   // kept: fewer builds than steps
   const std::string summary = read_text(dir / "full" / "summary.json");
   const auto builds = summary.find("\"load_band_builds\": "), steps = summary.find("\"steps\": ");
