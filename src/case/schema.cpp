@@ -133,11 +133,10 @@ std::vector<KeySpec> make_schema() {
                "docs/method-notes.md).",
                field(&Case::film_gap)),
       real_key("numerics.load_band_motion", "-", def(0.0), closed(0, 0.5),
-               "With numerics.force = \"momentum\": how far, in d0, any particle or solid surface may move "
-               "before the band of the momentum loads is built again. Between builds each fluid particle "
-               "keeps the weights phi_B, grad phi_B and the area it had, and only the stage sums are "
-               "taken (with many bodies they are most of the bodies' cost; docs/performance.md). 0 builds "
-               "the band every step: the validated default (docs/method-notes.md, \"The kept band\").",
+               "With numerics.force = \"momentum\": how far, in d0, a particle or a solid surface may "
+               "move before the band of the momentum loads is built again (in between, only its stage sums "
+               "are taken; docs/performance.md). 0, the validated default, builds it every step "
+               "(docs/method-notes.md, \"The kept band\").",
                field(&Case::load_band_motion)),
       int_key("numerics.wall_pressure_sweeps", def(std::int64_t{1}), closed(1, 50),
               "Sweeps of the single-layer wall pressure update per step.",
@@ -478,11 +477,9 @@ std::vector<SectionSpec> make_sections() {
           "(guard_events in summary.json count its interventions: many events mean the flow is "
           "under-resolved next to a surface); `rhie_chow_factor` above 1 only to reproduce older "
           "runs; `normals = \"kernel\"` and `laplacian = \"morris\"` and `boundary = \"dummy\"` are "
-          "the paper's baselines for comparison; `load_band_motion` at 0.1 makes runs with many bodies "
-          "cheaper (a step with 1000 bodies a quarter shorter; docs/performance.md, \"The cost of "
-          "bodies\") at a small change of the loads (docs/validation.md, \"The kept band\"); it is not the "
-          "default until it has been validated at the fine level. A run that stops with exit 3 names the "
-          "likely cause and the keys to look at."),
+          "the paper's baselines for comparison; `load_band_motion` 0.1 makes many-body steps about a "
+          "quarter shorter (docs/performance.md), not yet the default (docs/validation.md, \"The kept "
+          "band\"). A run that stops with exit 3 names the likely cause and the keys to look at."),
       table_section("initial", "Initial particle arrangement and velocity field."),
       table_section("output", "What is written to the run directory, and how often."),
       table_section("guard", "Bounds that stop a run that is blowing up."),
