@@ -316,7 +316,7 @@ class Solver {
   WallPiece wall_now(std::size_t k) const { return wall_at(k, groups_[k].angle); }
   /// Wall group k's geometry at angle `angle` of its group.
   WallPiece wall_at(std::size_t k, real angle) const;
-  /// The bodies binned into cells of (largest bounding radius + reach), once a step.
+  /// The bodies binned into cells of (largest bounding radius + reach), once a build of the band.
   void bin_bodies_for_band(real reach);
   /// The band momentum balance of every group (numerics.force = momentum).
   void momentum_group_loads();
@@ -479,11 +479,11 @@ class Solver {
   std::vector<Vec2> band_fp_, band_fv_, band_x_, group_pos_;
   std::vector<Vec2> band_torque_;  // per band entry: torque of its pressure part (x) and viscous part (y)
   std::vector<real> group_level_;
-  BodyCells band_bodies_;  // the bodies binned once a step for near_solids
+  BodyCells band_bodies_;  // the bodies binned once a build for near_solids
   std::vector<BodyCells::Item> band_body_items_;
-  CellGrid band_grid_;  // GPU backend: every particle binned once a step for band_cell_area
-  std::vector<WallPiece> band_walls_;  // wall group k as it stands this step (walls come first)
-  std::vector<Vec2> band_turn_;        // body group k: cos and sin of its angle this step
+  CellGrid band_grid_;  // GPU backend: every particle binned once a build for band_cell_area
+  std::vector<WallPiece> band_walls_;  // wall group k at the band's build (walls come first)
+  std::vector<Vec2> band_turn_;        // body group k: cos and sin of its angle at the band's build
   std::vector<Vec2> band_pos_;         // group k's position the band is built at
   std::vector<real> band_angle_;       // group k's angle the band is built at
   LoadBandState band_built_;           // numerics.load_band_motion: where the kept band was built
