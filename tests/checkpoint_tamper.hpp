@@ -167,6 +167,7 @@ inline std::vector<Tamper> structured() {
        }},
       {"kept load band without its particles",
        [](Checkpoint& k) {
+         k.load_band.x.clear();
          k.load_band.pos.assign(k.groups.size(), {0.003, 0.003});
          k.load_band.angle.assign(k.groups.size(), 0.0);
        }},

@@ -293,9 +293,10 @@ TEST(MomentumLoads, TorquesOfACylinderTurningInAClosedBoxBalance) {
 }
 
 // numerics.load_band_motion keeps the band over steps: it is built again exactly when, at the
-// start of a step, a particle or a solid's surface has moved farther than the limit since the
-// last build (a body's bound: its displacement plus its turn times its bounding radius), or the
-// fluid was reordered; its loads stay close to those of the band built every step.
+// start of a step, a solid's surface has moved farther than the limit since the last build (a
+// body's bound: its displacement plus its turn times its bounding radius), or a particle has
+// moved farther than its own limit (relative to its closest solid for a particle in the band),
+// or the fluid was reordered; its loads stay close to those of the band built every step.
 TEST(MomentumLoads, KeptBandIsBuiltAgainExactlyWhenSomethingMovedFartherThanTheLimit) {
   auto run = [](real motion, std::vector<Vec2>* force, std::int64_t* builds) {
     Case c = box_with_bodies(2e-4, ForceModel::Momentum);
@@ -307,38 +308,62 @@ TEST(MomentumLoads, KeptBandIsBuiltAgainExactlyWhenSomethingMovedFartherThanTheL
     Solver s(sc.params, sc.domain, sc.particles, sc.groups);
     const real limit = motion * c.d0;
     const int kReorder = sc.params.reorder_interval;
-    int kept = 0, rebuilt_on_motion = 0;
+    int kept = 0, rebuilt_on_motion = 0, relative = 0, tighter = 0;
     for (int step = 0; step < 120; ++step) {
       const std::vector<Vec2> x = s.particles().x;  // the positions the next step starts from
       const std::vector<RigidGroup> g = s.groups();
       const LoadBandState before = s.load_band_state();
+      const std::vector<real> limit2 = s.load_band_limits2();
+      const std::vector<std::int32_t> anchor = s.load_band_anchors();
       ASSERT_FALSE(s.step().has_value());
       force->push_back(s.groups()[5].force_pressure + s.groups()[5].force_viscous);
       if (motion == 0) continue;
       const LoadBandState& after = s.load_band_state();
       ASSERT_TRUE(after.held());
-      real moved = 0;  // what the step's test saw: the largest motion since the band held before it
+      // what the step's test saw: the largest motion since the band held before it, as a
+      // multiple of its limit (the bodies are more than limit / kBandGapShare apart)
+      real seen = 0;
       if (before.held()) {
-        for (std::size_t i = 0; i < x.size(); ++i) moved = std::max(moved, norm(x[i] - before.x[i]));
-        moved = std::max(moved, norm(g[5].pos - before.pos[5]) +
-                                    std::fabs(g[5].angle - before.angle[5]) * 1.2e-3);  // the ellipse's bound
+        ASSERT_EQ(limit2.size(), x.size());
+        ASSERT_EQ(anchor.size(), x.size());
+        for (std::size_t i = 0; i < x.size(); ++i) {
+          Vec2 moved = x[i] - before.x[i];
+          if (anchor[i] >= 0) {  // relative to the solid, turned with it
+            const std::size_t k = static_cast<std::size_t>(anchor[i]);
+            const Vec2 now = g[k].is_wall ? g[k].pos0 : g[k].pos,
+                       then = g[k].is_wall ? g[k].pos0 : before.pos[k];
+            const real turn = g[k].angle - before.angle[k];
+            moved = (x[i] - now) - rotate(before.x[i] - then, std::cos(turn), std::sin(turn));
+          }
+          seen = std::max(seen, std::sqrt(norm2(moved) / limit2[i]));
+        }
+        seen = std::max(seen,
+                        (norm(g[5].pos - before.pos[5]) + std::fabs(g[5].angle - before.angle[5]) * 1.2e-3) /
+                            limit);  // the ellipse's bound
+        for (std::size_t i = 0; i < x.size(); ++i) {
+          relative += anchor[i] >= 0;
+          tighter += limit2[i] < limit * limit;
+        }
       }
       bool same = before.held() && after.x.size() == before.x.size();
       for (std::size_t i = 0; same && i < x.size(); ++i)
         same = after.x[i].x == before.x[i].x && after.x[i].y == before.x[i].y;
       if (same) {
         ++kept;
-        EXPECT_LE(moved, limit) << "step " << step << ": kept after moving " << moved / c.d0 << " d0";
+        EXPECT_LE(seen, 1) << "step " << step << ": kept after moving " << seen << " limits";
       } else {
         if (step % kReorder != 0) {  // (a reordering renumbers the particles and builds it too)
           for (std::size_t i = 0; i < x.size(); ++i)
             ASSERT_TRUE(after.x[i].x == x[i].x && after.x[i].y == x[i].y)
                 << "built at the step's start positions";
           ++rebuilt_on_motion;
-          EXPECT_GT(moved, limit) << "step " << step << ": built again after moving only " << moved / c.d0
-                                  << " d0";
+          EXPECT_GT(seen, 1) << "step " << step << ": built again after moving only " << seen << " limits";
         }
       }
+    }
+    if (motion > 0) {
+      EXPECT_GT(relative, 0) << "particles in the band move relative to their solid";
+      EXPECT_GT(tighter, 0) << "particles between two solids (the box's corners) have a tighter limit";
     }
     *builds = s.load_band_builds();
     if (motion > 0) {
@@ -364,4 +389,54 @@ TEST(MomentumLoads, KeptBandIsBuiltAgainExactlyWhenSomethingMovedFartherThanTheL
       scale, diff, 100 * diff / scale);
   EXPECT_LT(diff, 0.05 * scale);
   EXPECT_GT(diff, 0) << "the kept band does change the loads (else the test sees nothing)";
+}
+
+// Two solids closing in: the partition of the fluid between them changes by about 4 delta / g
+// when their gap g closes by delta, so a kept band is built again once they have moved relative
+// to each other by kBandGapShare max(g, kBandGapFloor d0), far below the limit of 0.5 d0 here.
+TEST(MomentumLoads, KeptBandIsBuiltAgainBeforeTwoSolidsCloseInByAShareOfTheirGap) {
+  Case c = box_with_bodies(2e-4, ForceModel::Momentum);
+  c.bodies.resize(2);
+  c.bodies[1] = c.bodies[0];
+  c.bodies[1].name = "pushed";
+  const real R = c.bodies[0].radius, gap0 = 3 * c.d0;
+  c.bodies[1].center = c.bodies[0].center + Vec2{2 * R + gap0, 0};
+  c.bodies[1].motion = BodyMotion::Prescribed;
+  c.bodies[1].velocity = {-0.04, 0};
+  c.load_band_motion = 0.5;
+  Scene sc = build_scene(c);
+  Solver s(sc.params, sc.domain, sc.particles, sc.groups);
+  const std::size_t a = 4, b = 5;  // the two circles' groups, after the four walls
+  const int kReorder = sc.params.reorder_interval;
+  int kept = 0, built = 0;
+  real closest = gap0;
+  const auto same = [](const std::vector<Vec2>& u, const std::vector<Vec2>& v) {
+    if (u.size() != v.size()) return false;
+    for (std::size_t i = 0; i < u.size(); ++i)
+      if (!(u[i].x == v[i].x && u[i].y == v[i].y)) return false;
+    return true;
+  };
+  for (int step = 0; step < 150; ++step) {
+    const Vec2 pa = s.groups()[a].pos, pb = s.groups()[b].pos;
+    const real gap = norm(pb - pa) - 2 * R;
+    closest = std::min(closest, gap);
+    const LoadBandState before = s.load_band_state();
+    ASSERT_FALSE(s.step().has_value());
+    const LoadBandState& after = s.load_band_state();
+    if (!before.held() || step % kReorder == 0) continue;
+    const real relative = norm((pb - pa) - (before.pos[b] - before.pos[a]));
+    const real allowed = kBandGapShare * std::max(gap, kBandGapFloor * c.d0);
+    if (same(after.x, before.x)) {
+      ++kept;
+      EXPECT_LE(relative, allowed) << "step " << step << ": kept after the gap of " << gap / c.d0
+                                   << " d0 closed by " << relative / c.d0 << " d0";
+    } else {
+      ++built;
+    }
+  }
+  std::printf("gap %.2f -> %.2f d0: %d steps kept the band, %d built it again\n", gap0 / c.d0, closest / c.d0,
+              kept, built);
+  EXPECT_LT(closest, 0.7 * gap0) << "the gap closes";
+  EXPECT_GT(kept, 2 * built) << "the band is still kept most steps";
+  EXPECT_GT(built, 5);
 }

@@ -110,15 +110,27 @@ void Solver::body_update(real dt, real t_new) {
 
 namespace {
 
-PlacedBody placed(const PhysicsParams& prm, const RigidGroup& g) {
-  const BodyParams& b = prm.bodies[static_cast<std::size_t>(g.body)];
-  return PlacedBody{&b.shape, &b.samples, g.pos, g.angle};
-}
-
 /// Solids that overlap by more than this are a failure (beyond the sampling noise of the gap).
 real overlap_limit(const PhysicsParams& prm) { return -0.25 * prm.d0; }
 
 }  // namespace
+
+PlacedBody Solver::placed_body(const RigidGroup& g) const {
+  const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
+  return PlacedBody{&b.shape, &b.samples, g.pos, g.angle};
+}
+
+void Solver::list_bodies() {
+  body_groups_.clear();
+  body_pos_.clear();
+  body_bound_.clear();
+  for (std::size_t k = 0; k < groups_.size(); ++k) {
+    if (groups_[k].is_wall || groups_[k].removed) continue;
+    body_groups_.push_back(k);
+    body_pos_.push_back(groups_[k].pos);
+    body_bound_.push_back(prm_.bodies[static_cast<std::size_t>(groups_[k].body)].shape.bounding_radius());
+  }
+}
 
 Failure Solver::overlap_failure(const RigidGroup& a, const std::string& other, real gap) const {
   const char* cause =
@@ -145,15 +157,7 @@ std::optional<Failure> Solver::collisions() {
   }
   contacts_.clear();
   contact_dt_ = 0;
-  body_groups_.clear();
-  body_pos_.clear();
-  body_bound_.clear();
-  for (std::size_t k = 0; k < groups_.size(); ++k) {
-    if (groups_[k].is_wall || groups_[k].removed) continue;
-    body_groups_.push_back(k);
-    body_pos_.push_back(groups_[k].pos);
-    body_bound_.push_back(prm_.bodies[static_cast<std::size_t>(groups_[k].body)].shape.bounding_radius());
-  }
+  list_bodies();
   if (prm_.collision_model == ContactModel::Paper) return paper_collisions();
   const ContactLaw law = contact_law();
   // Imminent contacts (within one particle spacing of the contact distance) already limit the
@@ -171,7 +175,7 @@ std::optional<Failure> Solver::find_contacts(real reach) {
   contact_candidates(body_pos_, body_bound_, reach, domain_, body_pairs_);
   for (const BodyPair& p : body_pairs_) {
     std::size_t a = body_groups_[p.first], b = body_groups_[p.second];
-    Contact c = body_contact(placed(prm_, groups_[a]), placed(prm_, groups_[b]), domain_);
+    Contact c = body_contact(placed_body(groups_[a]), placed_body(groups_[b]), domain_);
     if (c.gap < overlap_limit(prm_))
       return overlap_failure(
           groups_[a], "body '" + prm_.bodies[static_cast<std::size_t>(groups_[b].body)].name + "'", c.gap);
@@ -185,7 +189,7 @@ std::optional<Failure> Solver::find_contacts(real reach) {
   for (const std::size_t a : body_groups_) {
     if (!is_free(a)) continue;
     for (std::size_t w = 0; w < prm_.walls.size(); ++w) {
-      const Contact c = wall_contact_exact(placed(prm_, groups_[a]), wall_now(w));
+      const Contact c = wall_contact_exact(placed_body(groups_[a]), wall_now(w));
       if (c.gap > 1e299) continue;
       if (c.gap < overlap_limit(prm_))
         return overlap_failure(groups_[a], "wall '" + groups_[w].name + "'", c.gap);
@@ -194,7 +198,7 @@ std::optional<Failure> Solver::find_contacts(real reach) {
     // the open boundaries' screens hold bodies back like fixed walls (Case::open_screen_offset)
     for (std::size_t z = 0; z < prm_.open_screens.size(); ++z) {
       if (removes_bodies(z)) continue;  // that screen removes the body instead (remove_bodies_at_outlets)
-      const Contact c = wall_contact_exact(placed(prm_, groups_[a]), prm_.open_screens[z]);
+      const Contact c = wall_contact_exact(placed_body(groups_[a]), prm_.open_screens[z]);
       if (c.gap > 1e299) continue;
       if (c.gap < overlap_limit(prm_))
         return overlap_failure(groups_[a], "the screen of open boundary '" + prm_.open_specs[z].name + "'",
@@ -345,11 +349,11 @@ std::optional<Failure> Solver::paper_collisions() {
   std::size_t p = 0;
   for (std::size_t ia = 0; ia < body_groups_.size(); ++ia) {
     RigidGroup& ga = groups_[body_groups_[ia]];
-    const PlacedBody pa = placed(prm_, ga);
+    const PlacedBody pa = placed_body(ga);
     const real Ra = pa.shape->equivalent_radius();
     for (; p < body_pairs_.size() && body_pairs_[p].first == ia; ++p) {
       RigidGroup& gb = groups_[body_groups_[body_pairs_[p].second]];
-      const PlacedBody pb = placed(prm_, gb);
+      const PlacedBody pb = placed_body(gb);
       const Contact c = body_contact(pa, pb, domain_);
       if (c.gap < overlap_limit(prm_))
         return overlap_failure(ga, "body '" + prm_.bodies[static_cast<std::size_t>(gb.body)].name + "'",
@@ -387,7 +391,7 @@ std::optional<Failure> Solver::body_at_open_boundary() const {
       const OpenZone& oz = prm_.open[z];
       // the body's surface against the line itself (its screen lies farther in and holds it back)
       const Contact c =
-          wall_contact_exact(placed(prm_, g), WallPiece::segment(oz.from, oz.from + oz.width * oz.t));
+          wall_contact_exact(placed_body(g), WallPiece::segment(oz.from, oz.from + oz.width * oz.t));
       if (!(c.gap < prm_.h)) continue;
       Failure f;
       f.position = g.pos;

@@ -146,31 +146,102 @@ void Solver::set_load_band_state(const LoadBandState& s) {
   band_restore_ = s.held();
 }
 
-bool Solver::load_band_moved(const std::vector<Vec2>& x) const {
+bool Solver::load_band_moved(const std::vector<Vec2>& x) {
   // A solid's surface moves at most by its displacement plus its turn times its farthest point
   // from its pivot (a circle's turn does not move its surface); a wall turns about its pivot.
   const real limit = prm_.load_band_motion;
-  for (std::size_t k = 0; k < groups_.size(); ++k) {
+  const std::size_t ng = groups_.size();
+  band_shift_.resize(ng);
+  band_turn_reach_.resize(ng);
+  band_turn_cs_.resize(ng);
+  real largest_solid = 0;
+  for (std::size_t k = 0; k < ng; ++k) {
     const RigidGroup& g = groups_[k];
     const real turn = std::fabs(g.angle - band_built_.angle[k]);
-    real moved = 0;
+    band_turn_cs_[k] =
+        Vec2{std::cos(g.angle - band_built_.angle[k]), std::sin(g.angle - band_built_.angle[k])};
     if (g.is_wall) {
       const WallPiece& w = prm_.walls[k];
-      moved = turn * (norm(domain_.separation(w.middle(), g.pos0)) + 0.5 * w.length());
+      band_shift_[k] = Vec2{};
+      band_turn_reach_[k] = turn * (norm(domain_.separation(w.middle(), g.pos0)) + 0.5 * w.length());
     } else {
       const Shape& shape = prm_.bodies[static_cast<std::size_t>(g.body)].shape;
-      moved = norm(domain_.separation(g.pos, band_built_.pos[k])) +
-              (shape.kind() == ShapeKind::Circle ? 0 : turn * shape.bounding_radius());
+      band_shift_[k] = domain_.separation(g.pos, band_built_.pos[k]);
+      band_turn_reach_[k] = shape.kind() == ShapeKind::Circle ? 0 : turn * shape.bounding_radius();
     }
+    const real moved = norm(band_shift_[k]) + band_turn_reach_[k];
     if (!(moved <= limit)) return true;
+    largest_solid = std::max(largest_solid, moved);
   }
-  // every particle, the surface particles too: they close or open the fluid's Voronoi cells
+  // two surfaces together can have closed their gap by at most twice the largest motion
+  if (2 * largest_solid > kBandGapShare * kBandGapFloor * prm_.d0 && solids_closed_in()) return true;
+  // Every particle, the surface particles too (they close or open the fluid's Voronoi cells),
+  // within its limit (band_moved_limit2). A particle in the band moves relative to its closest
+  // solid: its phi, grad phi and cell hold while it and its neighbours move with that solid, as
+  // the fluid next to a moving body does (a drop onto a wall at St 380 rebounded 3 % too slowly
+  // with the particles' own motion against the band's limit: docs/method-notes.md).
   const std::size_t n = x.size();
+  if (band_limit2_.size() != n || band_anchor_.size() != n) return true;
   real largest = 0;
 #pragma omp parallel for schedule(static) reduction(max : largest)
-  for (std::size_t i = 0; i < n; ++i)
-    largest = std::max(largest, norm2(domain_.separation(x[i], band_built_.x[i])));
-  return !(largest <= limit * limit);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t k = band_anchor_[i];
+    Vec2 moved = domain_.separation(x[i], band_built_.x[i]);
+    if (k >= 0) {
+      // x relative to the solid's pivot now, against the build's relative position turned with it
+      const std::size_t a = static_cast<std::size_t>(k);
+      const RigidGroup& g = groups_[a];
+      const Vec2 now = domain_.separation(x[i], g.is_wall ? g.pos0 : g.pos),
+                 then = domain_.separation(band_built_.x[i], g.is_wall ? g.pos0 : band_built_.pos[a]);
+      moved = now - rotate(then, band_turn_cs_[a].x, band_turn_cs_[a].y);
+    }
+    largest = std::max(largest, norm2(moved) / band_limit2_[i]);
+  }
+  return !(largest <= 1);
+}
+
+namespace {
+
+/// The kept band's motion limit of a particle between two solids the local gap g = d_B + d_C
+/// apart (g at least `floor`), squared: its partition phi_B ~ 1 / (1 + (d_B / d_C)^4) changes
+/// by about 4 delta / g when it moves by delta.
+real band_moved_limit2(real gap, real limit, real floor) {
+  const real l = std::min(limit, kBandGapShare * std::max(gap, floor));
+  return l * l;
+}
+
+}  // namespace
+
+bool Solver::solids_closed_in() {
+  // Between two surfaces a gap g apart, the partition phi_B = w_B / (1 + sum_C w_C) with
+  // w ~ s^-4 changes by about 4 delta / g when they close in by delta: there the band is kept
+  // only while their relative motion stays below kBandGapShare g (g at least kBandGapFloor d0),
+  // which is tighter than load_band_motion for gaps below load_band_motion / kBandGapShare.
+  const real near = prm_.load_band_motion / kBandGapShare, floor = kBandGapFloor * prm_.d0;
+  const auto closed_in = [&](std::size_t a, std::size_t b, real gap) {
+    const real relative = norm(band_shift_[a] - band_shift_[b]) + band_turn_reach_[a] + band_turn_reach_[b];
+    return relative > kBandGapShare * std::max(gap, floor);
+  };
+  const auto may_close = [&](std::size_t a, std::size_t b) {
+    const real bound =
+        norm(band_shift_[a]) + norm(band_shift_[b]) + band_turn_reach_[a] + band_turn_reach_[b];
+    return bound > kBandGapShare * floor;
+  };
+  list_bodies();
+  contact_candidates(body_pos_, body_bound_, near, domain_, band_pairs_);
+  for (const BodyPair& p : band_pairs_) {
+    const std::size_t a = body_groups_[p.first], b = body_groups_[p.second];
+    if (!may_close(a, b)) continue;
+    const real gap = body_contact(placed_body(groups_[a]), placed_body(groups_[b]), domain_).gap;
+    if (gap < near && closed_in(a, b, gap)) return true;
+  }
+  for (const std::size_t a : body_groups_)
+    for (std::size_t w = 0; w < prm_.walls.size(); ++w) {
+      if (!may_close(a, w)) continue;
+      const real gap = wall_contact_exact(placed_body(groups_[a]), wall_now(w)).gap;
+      if (gap < near && closed_in(a, w, gap)) return true;
+    }
+  return false;
 }
 
 void Solver::update_load_band(bool reordered) {
@@ -233,6 +304,12 @@ void Solver::build_load_band(const std::vector<Vec2>& x, const NeighborList& nl)
   band_parts_.resize(threads);
   band_part_first_.assign(threads + 1, 0);
   const real film = kFilmGap * prm_.h;
+  // numerics.load_band_motion: each particle's limit, squared (band_moved_limit2)
+  const real kept_limit = prm_.open.empty() ? prm_.load_band_motion : 0;
+  if (kept_limit > 0) {
+    band_limit2_.assign(x.size(), kept_limit * kept_limit);
+    band_anchor_.assign(x.size(), -1);
+  }
 #pragma omp parallel num_threads(static_cast<int>(threads))
   {
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()),
@@ -257,6 +334,12 @@ void Solver::build_load_band(const std::vector<Vec2>& x, const NeighborList& nl)
       real second = std::numeric_limits<real>::infinity();
       for (int k = 0; k < count; ++k)
         if (k != closest && near[k].d < second) second = near[k].d;
+      if (kept_limit > 0) {
+        band_anchor_[nb + f] = near[closest].group;
+        if (count > 1)
+          band_limit2_[nb + f] =
+              band_moved_limit2(near[closest].d + second, kept_limit, kBandGapFloor * prm_.d0);
+      }
       for (int k = 0; k < count; ++k) {
         BandEntry e;
         e.particle = static_cast<std::uint32_t>(nb + f);

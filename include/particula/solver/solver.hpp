@@ -70,8 +70,9 @@ struct PhysicsParams {
   int wall_pressure_sweeps = 1;
   real rho_min_ratio = 0.5, rho_max_ratio = 2.0;
   int reorder_interval = 50;  // steps between cell reorderings of the fluid block
-  // numerics.load_band_motion (m): the band of the momentum loads is kept until a particle or a
-  // solid surface has moved this far since it was built (0: built every step)
+  // numerics.load_band_motion (m): the band of the momentum loads is kept until a solid surface
+  // or a particle (relative to its closest solid) has moved this far since it was built, less
+  // between two solids close together (0: built every step)
   real load_band_motion = 0;
   std::vector<BodyParams> bodies;
   std::vector<WallPiece> walls;  // at t = 0 (a turning wall: Solver::wall_now)
@@ -233,6 +234,10 @@ class Solver {
   void set_load_band_state(const LoadBandState& s);
   /// Builds of the load band by this solver (a kept band is built less often than once a step).
   std::int64_t load_band_builds() const { return band_builds_; }
+  /// The kept band's last build: each particle's motion limit, squared (m^2), and the solid it
+  /// moves relative to (its closest, for a particle in the band; -1: its own motion counts).
+  const std::vector<real>& load_band_limits2() const { return band_limit2_; }
+  const std::vector<std::int32_t>& load_band_anchors() const { return band_anchor_; }
 
   /// A body taken out of the run at an outlet in the last step (remove_bodies_at_outlets).
   struct BodyRemoval {
@@ -288,9 +293,15 @@ class Solver {
   /// The band of this step: built every step, or with numerics.load_band_motion kept until
   /// load_band_moved() (or rebuilt from a checkpoint's LoadBandState).
   void update_load_band(bool reordered);
-  /// Whether a particle or a solid surface has moved more than numerics.load_band_motion since
-  /// the kept band was built (positions x now).
-  bool load_band_moved(const std::vector<Vec2>& x) const;
+  /// Whether, since the kept band was built (positions x now), a solid surface has moved more
+  /// than numerics.load_band_motion, two solids near each other have closed in by more than
+  /// solids_closed_in allows, or a particle has moved more than its limit (band_limit2_),
+  /// relative to its closest solid (band_anchor_) for a particle in the band. Fills
+  /// band_shift_, band_turn_reach_ and band_turn_cs_.
+  bool load_band_moved(const std::vector<Vec2>& x);
+  /// Whether two solids whose gap g is below load_band_motion / kBandGapShare have moved
+  /// relative to each other by more than kBandGapShare max(g, kBandGapFloor d0) since the build.
+  bool solids_closed_in();
   /// Each band entry's slot among the groups of its block of kBandBlock entries, and each
   /// block's groups (band_block_first_, band_slot_group_).
   void assign_band_slots();
@@ -349,6 +360,11 @@ class Solver {
   ContactLaw contact_law() const;
   /// Failure of solids overlapping by more than the sampling noise (exit code 3).
   Failure overlap_failure(const RigidGroup& a, const std::string& other, real gap) const;
+  /// Body group g's shape at its current pose.
+  PlacedBody placed_body(const RigidGroup& g) const;
+  /// The bodies still in the domain: their groups, positions and bounding radii (body_groups_,
+  /// body_pos_, body_bound_).
+  void list_bodies();
   /// One side of a contact: a body's group, or a wall group (mass 0, radius 0).
   ContactSide contact_side(const RigidGroup& g) const;
   /// Advances the velocities of free and prescribed groups by one stage to time t_stage_end,
@@ -488,6 +504,12 @@ class Solver {
   std::vector<real> band_angle_;       // group k's angle the band is built at
   LoadBandState band_built_;           // numerics.load_band_motion: where the kept band was built
   bool band_restore_ = false;          // band_built_ came from a checkpoint: build the band from it
+  std::vector<Vec2> band_shift_;       // group k's displacement since the band's build
+  std::vector<real> band_turn_reach_;  // how far group k's turn since the build can move its surface
+  std::vector<BodyPair> band_pairs_;   // bodies near each other (solids_closed_in)
+  std::vector<real> band_limit2_;      // each particle's kept-band motion limit, squared
+  std::vector<std::int32_t> band_anchor_;  // the solid a particle next to one moves relative to, or -1
+  std::vector<Vec2> band_turn_cs_;         // cos and sin of group k's turn since the band's build
   std::int64_t band_builds_ = 0;
   std::vector<GroupMotion> motions_;
 
