@@ -210,6 +210,17 @@ real band_moved_limit2(real gap, real limit, real floor) {
   return l * l;
 }
 
+/// The local gap at a fluid particle: its distance to its closest solid plus that to the closest
+/// solid facing it across the particle (distance gradients more than 120 degrees apart, as the
+/// surface guard's `facing`), or infinity. The next piece of the same wall, or the other wall of
+/// a corner, is not a gap.
+real facing_gap(const NearSolid* near, int count, int closest) {
+  real other = std::numeric_limits<real>::infinity();
+  for (int k = 0; k < count; ++k)
+    if (k != closest && dot(near[k].n, near[closest].n) < -0.5) other = std::min(other, near[k].d);
+  return near[closest].d + other;
+}
+
 }  // namespace
 
 bool Solver::solids_closed_in() {
@@ -338,7 +349,7 @@ void Solver::build_load_band(const std::vector<Vec2>& x, const NeighborList& nl)
         band_anchor_[nb + f] = near[closest].group;
         if (count > 1)
           band_limit2_[nb + f] =
-              band_moved_limit2(near[closest].d + second, kept_limit, kBandGapFloor * prm_.d0);
+              band_moved_limit2(facing_gap(near, count, closest), kept_limit, kBandGapFloor * prm_.d0);
       }
       for (int k = 0; k < count; ++k) {
         BandEntry e;

@@ -46,7 +46,7 @@ inline constexpr real kLoadBandReach = 5.0;
 /// partition below changes by about 4 delta / g when they close in by delta, so this keeps that
 /// change near 20 %. At 0.05 the rebound of the drop_rebound case at d0 = 1e-4 came out
 /// as with the band built every step (docs/method-notes.md, "The kept band").
-inline constexpr real kBandGapShare = 0.02;
+inline constexpr real kBandGapShare = 0.05;
 inline constexpr real kBandGapFloor = 0.1;
 
 /// Weight of a solid at distance s (in units of the band reach) from its surface,
