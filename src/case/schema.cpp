@@ -477,8 +477,9 @@ std::vector<SectionSpec> make_sections() {
           "(guard_events in summary.json count its interventions: many events mean the flow is "
           "under-resolved next to a surface); `rhie_chow_factor` above 1 only to reproduce older "
           "runs; `normals = \"kernel\"` and `laplacian = \"morris\"` and `boundary = \"dummy\"` are "
-          "the paper's baselines for comparison; `load_band_motion` 0 builds the loads' band every "
-          "step (the kept band's reference: docs/validation.md, \"The kept band\"). A run that stops "
+          "the paper's baselines for comparison; `load_band_motion` 0 builds the momentum loads' band "
+          "every step, the reference for the kept band (docs/validation.md, \"The kept band\"). A run that "
+          "stops "
           "with exit 3 names the likely cause and the keys to look at."),
       table_section("initial", "Initial particle arrangement and velocity field."),
       table_section("output", "What is written to the run directory, and how often."),
