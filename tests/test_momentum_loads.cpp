@@ -7,13 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "particula/case/case.hpp"
-#include "particula/case/load.hpp"
 #include "particula/scene/scene.hpp"
 #include "particula/solver/momentum_loads.hpp"
 #include "particula/solver/solver.hpp"
@@ -445,43 +443,4 @@ TEST(MomentumLoads, KeptBandIsBuiltAgainBeforeTwoSolidsCloseInByAShareOfTheirGap
   EXPECT_GT(kept, 2 * built) << "the band is still kept most steps";
   EXPECT_GT(built, 5);
   EXPECT_GT(tighter, 0);
-}
-
-// The x-momentum budget of a fixed cylinder in a body-force-driven periodic channel at Re about
-// 100 (cases/robustness/cylinder_channel_re100.toml, 10 particles across, without shifting,
-// whose first-order velocity correction is not a force), over its first 0.05 s step by step:
-// the loads on the cylinder and the walls must equal the momentum the fluid lost, the driving
-// f M t less the fluid's momentum change. The odd-even damping (kappa = 1.2 nu here) takes momentum from the
-// fluid next to the surfaces, most in the start-up, where the velocity next to them is not yet resolved: with
-// it left out of the band's momentum rate (until session 43) the loads over the first 0.05 s came out 0.8731
-// of the momentum the fluid lost, with it 1.0017 (what is left: the renormalized operators do not conserve
-// momentum exactly).
-TEST(MomentumLoads, LoadsOfAChannelFlowPastACylinderCarryTheMomentumTheFluidLoses) {
-  const Case c =
-      load_case(std::filesystem::path(PARTICULA_SOURCE_DIR) / "cases/robustness/cylinder_channel_re100.toml",
-                {"numerics.shifting_beta=0", "time.end=0.05"});
-  ASSERT_GT(c.odd_even_damping, 0);
-  Scene sc = build_scene(c);
-  Solver s(sc.params, sc.domain, sc.particles, sc.groups);
-  const auto momentum_x = [&] {
-    real sum = 0;
-    const Particles& P = s.particles();
-    for (std::size_t i = P.n_boundary; i < P.size(); ++i) sum += P.m[i] * P.v[i].x;
-    return sum;
-  };
-  const real mass = fluid_mass(s.particles()), m0 = momentum_x();
-  real impulse = 0;  // int (sum of the solids' x loads) dt, one load per step (the corrector's)
-  while (s.time() < c.t_end) {
-    const real t0 = s.time();
-    ASSERT_FALSE(s.step(c.t_end - t0).has_value());
-    real loads = 0;
-    for (const RigidGroup& g : s.groups()) loads += g.force_pressure.x + g.force_viscous.x;
-    impulse += loads * (s.time() - t0);
-  }
-  const real driving = mass * c.body_force.x * s.time(), change = momentum_x() - m0;
-  const real lost = driving - change, ratio = impulse / lost;
-  std::printf(
-      "t = %.3f s: loads %.5g, momentum change %.5g, driving %.5g N s/m: loads / (driving - change) %.4f\n",
-      s.time(), impulse, change, driving, ratio);
-  EXPECT_NEAR(ratio, 1.0, 0.01);
 }

@@ -118,7 +118,7 @@ class CudaBackend final : public DeviceBackend {
   DArray<std::int64_t> id_;
   // work arrays
   DArray<real> rho_n_, rho_s_, p_n_, vol_, rc_, div_v_, p_new_, scratch_real_;
-  DArray<Vec2> v_n_, v_s_, lapV_, G_, shift_dir_, grad_w_, odd_even_;
+  DArray<Vec2> v_n_, v_s_, lapV_, G_, shift_dir_, grad_w_;
   DArray<Mat2> gradV_, gradV_n_;
   DArray<real> lap_w_, film_;
   DArray<std::uint8_t> isolated_;

@@ -94,7 +94,6 @@ LoadArrays CudaBackend::device_load_arrays(const LoadArrays& scalars) {
   a.p = p_.data();
   a.grad_v = gradV_.data();
   a.lap_v = lapV_.data();
-  a.odd_even = scalars.odd_even != nullptr ? odd_even_.data() : nullptr;
   a.grad_p_over_rho = G_.data();
   a.group_pos = group_pos_.data();
   a.group_level = group_level_.data();

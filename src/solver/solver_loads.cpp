@@ -293,7 +293,6 @@ LoadArrays Solver::load_arrays() const {
   a.p = P_.p.data();
   a.grad_v = gradV_.data();
   a.lap_v = lapV_.data();
-  a.odd_even = prm_.odd_even_damping > 0 ? odd_even_.data() : nullptr;
   a.grad_p_over_rho = G_.data();
   a.group_pos = group_pos_.data();
   a.group_level = group_level_.data();

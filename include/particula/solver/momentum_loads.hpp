@@ -210,7 +210,6 @@ struct LoadArrays {
   const real* p = nullptr;
   const Mat2* grad_v = nullptr;
   const Vec2* lap_v = nullptr;
-  const Vec2* odd_even = nullptr;         // kappa (<lap V> - <div <grad V>>) of the stage, or none
   const Vec2* grad_p_over_rho = nullptr;  // <grad P>_i / rho_i of the stage
   const Vec2* group_pos = nullptr;        // reference point X_B of each rigid group
   const real* group_level = nullptr;      // K_B of each group's smooth pressure field (smooth_pressure)
@@ -241,7 +240,7 @@ struct BandSample {
   real shape = 0;   // e(x_i) of the smooth pressure (smooth_pressure_shape)
   Mat2 tau;         // mu (L + L^T - tr(L) I), L_ab = d_a V_b (renormalized, P.7)
   Vec2 m_rate_p;    // m_i (-<grad P>_i / rho_i): the pressure share of the particle's m (a - f)
-  Vec2 m_rate_v;    // m_i (nu <lap V>_i + the odd-even damping's acceleration): the viscous share
+  Vec2 m_rate_v;    // m_i nu <lap V>_i: the viscous share
   Vec2 x;
 };
 
@@ -261,12 +260,6 @@ PARTICULA_HD BandSample band_sample(const LoadArrays& a, std::uint32_t i, real a
   s.tau = a.mu * (L + transpose(L) - Mat2{div_v, 0, 0, div_v});
   s.m_rate_p = -s.m * a.grad_p_over_rho[i];
   s.m_rate_v = (s.m * a.nu) * a.lap_v[i];
-  // The odd-even damping (sweeps.hpp, odd_even_velocity_at) is part of the particle's momentum
-  // rate: next to a surface, where the one-sided compact and wide Laplacians differ, it takes
-  // momentum from the fluid like a viscous stress. Left out, the loads missed it: the channel at
-  // Re 100 (10 particles across, kappa = 1.2 nu) lost 4.7 % of its momentum balance
-  // (docs/method-notes.md, "Forces on solids").
-  if (a.odd_even != nullptr) s.m_rate_v += s.m * a.odd_even[i];
   return s;
 }
 

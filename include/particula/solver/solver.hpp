@@ -461,7 +461,6 @@ class Solver {
   std::vector<real> group_w0_;
   std::vector<Mat2> B_, Bhat_, gradV_, gradV_n_;
   std::vector<Vec2> lapV_, G_, v_n_, v_s_, shift_dir_;
-  std::vector<Vec2> odd_even_;  // the odd-even damping's acceleration of the stage (band loads)
   // per-pair weights of the geometry sweep (solver/sweeps.hpp)
   std::vector<std::uint32_t> near_a_, near_b_;  // nearest surface particles (surface guard)
   std::vector<real> film_;                      // unresolved-film fraction of each particle, this step
