@@ -116,9 +116,9 @@ std::vector<KeySpec> make_schema() {
                field(&Case::shifting_beta)),
       real_key(
           "numerics.odd_even_damping", "-", def(0.005), closed(0, 0.05),
-          "Strength alpha of the damping of odd-even (checkerboard) velocity modes: kappa = max(0, alpha c h "
-          "- nu) times the compact minus the wide Laplacian of V (zero for quadratic fields), acting only "
-          "where c d0 / nu is above about 77 (docs/method-notes.md). 0 is the paper's scheme.",
+          "Strength alpha of the damping of odd-even (checkerboard) velocity modes, kappa = alpha c h times "
+          "the difference of the compact and the wide Laplacian of V (zero for quadratic fields; "
+          "docs/method-notes.md). 0 is the paper's scheme.",
           field(&Case::odd_even_damping)),
       real_key("numerics.surface_guard", "-", def(0.25), closed(0, 0.45),
                "Keep-out distance of fluid particles from walls and body surfaces, in d0: a fluid particle "

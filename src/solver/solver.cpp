@@ -84,7 +84,7 @@ StageParams Solver::stage_params(real dt) const {
   s.rho0 = prm_.rho0;
   s.c = prm_.c;
   s.p0 = prm_.p0;
-  s.kappa = odd_even_kappa(prm_.odd_even_damping, prm_.c, prm_.h, prm_.nu);  // max(0, alpha c h - nu)
+  s.kappa = prm_.odd_even_damping * prm_.c * prm_.h;  // kappa = alpha c h (method-notes)
   s.void_distance = kVoidDistance * prm_.d0;
   s.single_layer = prm_.single_layer;
   return s;

@@ -469,19 +469,6 @@ PARTICULA_HD void store_velocity_derivatives(const SweepContext& c, std::size_t 
   div_v[i] = trace(L);
 }
 
-/// Coefficient kappa of the odd-even damping: the mode's diffusivity made up to alpha c h.
-/// On the odd-even mode the viscous term nu <lap V> and the damping kappa (<lap V> - <div <grad V>>)
-/// act alike (the wide Laplacian nearly vanishes there), so the mode is damped at a rate of
-/// (nu + kappa) / d0^2 in order. The damping adds only what the viscosity lacks of alpha c h:
-///   kappa = max(0, alpha c h - nu).
-/// Where nu >= alpha c h (cell Reynolds numbers c d0 / nu below about 1 / (alpha h/d0), 77 at the
-/// defaults) it is zero, so it does not act as an extra viscosity on the resolved profile next to a
-/// surface, where the wide Laplacian is one-sided (docs/method-notes.md, "Odd-even velocity damping").
-PARTICULA_HD real odd_even_kappa(real alpha, real c, real h, real nu) {
-  const real k = alpha * c * h - nu;
-  return k > 0 ? k : real(0);
-}
-
 /// The velocity counterpart of the Rhie-Chow bracket: <lap V>_i (compact, P.10) minus
 /// <div <grad V>>_i (the first-derivative scheme applied twice, a wide stencil). Both are
 /// consistent Laplacians: the difference is exactly zero for linear fields and of the order of
