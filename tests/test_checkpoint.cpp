@@ -105,6 +105,7 @@ Checkpoint sample() {
   a.count = 2;
   a.force_pressure = {13, 14};
   a.force_viscous = {15, 16};
+  a.force_damping = {-1e-9, 2.5e-10};
   a.torque = 17;
   RigidGroup b = a;
   b.name = "disc";

@@ -7,11 +7,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "particula/case/case.hpp"
+#include "particula/case/load.hpp"
 #include "particula/scene/scene.hpp"
 #include "particula/solver/momentum_loads.hpp"
 #include "particula/solver/solver.hpp"
@@ -443,4 +445,50 @@ TEST(MomentumLoads, KeptBandIsBuiltAgainBeforeTwoSolidsCloseInByAShareOfTheirGap
   EXPECT_GT(kept, 2 * built) << "the band is still kept most steps";
   EXPECT_GT(built, 5);
   EXPECT_GT(tighter, 0);
+}
+
+// The x-momentum budget of a fixed cylinder in a body-force-driven periodic channel at Re about
+// 100 (cases/robustness/cylinder_channel_re100.toml, 10 particles across, without shifting,
+// whose first-order velocity correction is not a force), over its first 0.05 s step by step: the
+// loads on the cylinder and the walls plus the odd-even damping's sink next to them
+// (RigidGroup::force_damping) must equal the momentum the fluid lost, the driving f M t less the
+// fluid's momentum change. The damping (kappa = 1.2 nu here) takes momentum from the fluid next to
+// the surfaces, most in the start-up, where the velocity next to them is not yet resolved; it is
+// reported, not put in the loads (docs/method-notes.md, "Forces on solids"). Session 43 measured
+// the loads alone at 0.8731 of the momentum the fluid lost, with the damping 1.0017 (what is left:
+// the renormalized operators do not conserve momentum exactly).
+TEST(MomentumLoads, LoadsAndTheDampingsSinkCarryTheMomentumAChannelFlowPastACylinderLoses) {
+  const Case c =
+      load_case(std::filesystem::path(PARTICULA_SOURCE_DIR) / "cases/robustness/cylinder_channel_re100.toml",
+                {"numerics.shifting_beta=0", "time.end=0.05"});
+  ASSERT_GT(c.odd_even_damping, 0);
+  Scene sc = build_scene(c);
+  Solver s(sc.params, sc.domain, sc.particles, sc.groups);
+  const auto momentum_x = [&] {
+    real sum = 0;
+    const Particles& P = s.particles();
+    for (std::size_t i = P.n_boundary; i < P.size(); ++i) sum += P.m[i] * P.v[i].x;
+    return sum;
+  };
+  const real mass = fluid_mass(s.particles()), m0 = momentum_x();
+  // int (sum of the solids' x loads) dt and the same of the damping's sink, one per step (the
+  // corrector's)
+  real impulse = 0, damped = 0;
+  while (s.time() < c.t_end) {
+    const real t0 = s.time();
+    ASSERT_FALSE(s.step(c.t_end - t0).has_value());
+    real loads = 0, sink = 0;
+    for (const RigidGroup& g : s.groups())
+      loads += g.force_pressure.x + g.force_viscous.x, sink += g.force_damping.x;
+    impulse += loads * (s.time() - t0);
+    damped += sink * (s.time() - t0);
+  }
+  const real driving = mass * c.body_force.x * s.time(), change = momentum_x() - m0;
+  const real lost = driving - change, ratio = (impulse + damped) / lost;
+  std::printf(
+      "t = %.3f s: loads %.5g, damping %.5g, momentum change %.5g, driving %.5g N s/m: (loads + damping) / "
+      "(driving - change) %.4f, damping / (driving - change) %.4f\n",
+      s.time(), impulse, damped, change, driving, ratio, damped / lost);
+  EXPECT_NEAR(ratio, 1.0, 0.01);
+  EXPECT_GT(damped / lost, 0.05) << "the damping's sink is a tenth of the start-up's momentum budget here";
 }

@@ -281,7 +281,7 @@ TEST(UnresolvedFilms, AFilmParticleRelaxesToItsFluidNeighboursNotToTheSurfaces) 
     std::vector<real> rc(3, 0);
     std::vector<Vec2> v(3);
     rhie_chow_and_momentum_at(c, 1, p.data(), rho.data(), G.data(), grad_v.data(), lap_v.data(),
-                              v_start.data(), s, rc.data(), v.data());
+                              v_start.data(), s, rc.data(), v.data(), nullptr);
     return rc[1];
   };
   // no film: the paper's bracket, surface included:

@@ -49,6 +49,18 @@ void write_coefficients(const fs::path& dir, double t_end, double f, double cd0,
   }
 }
 
+/// bodies.csv of the fixed cylinder every 0.01 s to t_end: drag fx = 1 N/m with the damping's
+/// sink fdx = 0.02 N/m, and before t = t_end / 4 (outside every check's window) 10 and 5.
+void write_cylinder(const fs::path& dir, double t_end) {
+  io::CsvWriter csv(dir / "bodies.csv", {"time", "body", "x", "y", "fx", "fy", "fdx", "fdy"});
+  const int n = static_cast<int>(std::lround(t_end / 0.01));
+  for (int k = 0; k <= n; ++k) {
+    const double t = 0.01 * k;
+    const bool early = t < t_end / 4;
+    csv.row({t, 0, 0.2, 0.2, early ? 10.0 : 1.0, 0, early ? 5.0 : 0.02, 0});
+  }
+}
+
 }  // namespace
 
 TEST(ValidateOpen, Dfg2d2FindsTheSheddingFrequencyAndTheMaximaThroughTheNoise) {
@@ -57,6 +69,7 @@ TEST(ValidateOpen, Dfg2d2FindsTheSheddingFrequencyAndTheMaximaThroughTheNoise) {
   // St = 0.3 at U = 1, D = 0.1: f = 3 Hz; largest C_D 3.23, largest C_L 1.0
   write_coefficients(dir, 10, 3.0, 3.18, 0.05, 1.0, 0.05);
   write_open_boundaries(dir, 10, 0.4, 0);
+  write_cylinder(dir, 10);
   const auto checks = check_dfg_2d2(dir, c);
   const auto& st = fabricated::find(checks, "Strouhal number");
   EXPECT_NEAR(st.value, 0.3, 0.003);
@@ -64,6 +77,8 @@ TEST(ValidateOpen, Dfg2d2FindsTheSheddingFrequencyAndTheMaximaThroughTheNoise) {
   EXPECT_NEAR(fabricated::find(checks, "largest C_D").value, 3.23, 0.01) << "the noise does not inflate the maximum";
   EXPECT_NEAR(fabricated::find(checks, "largest C_L").value, 1.0, 0.01);
   EXPECT_TRUE(fabricated::find(checks, "fluid mass against the fluxes").pass);
+  EXPECT_NEAR(fabricated::find(checks, "odd-even damping at the cylinder").value, 0.02, 1e-12);
+  EXPECT_TRUE(fabricated::find(checks, "odd-even damping at the cylinder").report_only);
   // a shedding at 2.5 Hz (St 0.25) fails
   write_coefficients(dir, 10, 2.5, 3.18, 0.05, 1.0, 0.05);
   EXPECT_FALSE(fabricated::find(check_dfg_2d2(dir, c), "Strouhal number").pass);
@@ -91,11 +106,13 @@ TEST(ValidateOpen, Dfg2d1AveragesTheLastThirdAndTheMassBalanceCatchesALeak) {
     p.row({t, 0.25, 0.2, 0, 0, 0.2 - 0.1174});
   }
   write_open_boundaries(dir, 12, 0.08, 0);
+  write_cylinder(dir, 12);
   const auto checks = check_dfg_2d1(dir, c);
   EXPECT_NEAR(fabricated::find(checks, "drag coefficient").value, 5.6, 0.01);
   EXPECT_TRUE(fabricated::find(checks, "drag coefficient").pass);
   EXPECT_NEAR(fabricated::find(checks, "pressure difference").value, 0.1174, 1e-12);
   EXPECT_TRUE(fabricated::find(checks, "fluid mass against the fluxes").pass);
+  EXPECT_NEAR(fabricated::find(checks, "odd-even damping at the cylinder").value, 0.02, 1e-12);
   write_open_boundaries(dir, 12, 0.08, 1e-9);  // a leak of 1e-9 kg/m per second
   EXPECT_FALSE(fabricated::find(check_dfg_2d1(dir, c), "fluid mass against the fluxes").pass);
 }

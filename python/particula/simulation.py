@@ -189,14 +189,17 @@ class Simulation:
     def body_states(self):
         """The bodies in case order as a dict of arrays (copies): name, motion, position (nb, 2),
         velocity (nb, 2), angle, omega, force (hydrodynamic, per unit depth, N/m; = force_pressure
-        + force_viscous), force_collision, torque, torque_collision, mass, inertia, area: the
-        columns of bodies.csv at this instant; and removed (a list of bools: taken out of the run
-        at an outlet with bodies = "removed", its state frozen at zero velocity)."""
+        + force_viscous), force_pressure, force_viscous, force_collision, torque,
+        torque_collision, mass, inertia, area, force_damping (the odd-even damping's momentum
+        sink next to the body, not part of force): the columns of bodies.csv at this instant; and
+        removed (a list of bools: taken out of the run at an outlet with bodies = "removed", its
+        state frozen at zero velocity)."""
         return self._sim.body_states()
 
     def wall_states(self):
         """The walls in case order (name, motion, position, velocity, angle, omega, force,
-        force_pressure, force_viscous, torque): the columns of walls.csv at this instant."""
+        force_pressure, force_viscous, torque, force_damping): the columns of walls.csv at this
+        instant."""
         return self._sim.wall_states()
 
     def __repr__(self):

@@ -226,6 +226,7 @@ py::dict group_states(const Simulation& sim, bool walls) {
   t.vector("force", column([](const RigidGroup& g) { return g.force_pressure + g.force_viscous; }));
   t.vector("force_pressure", column([](const RigidGroup& g) { return g.force_pressure; }));
   t.vector("force_viscous", column([](const RigidGroup& g) { return g.force_viscous; }));
+  t.vector("force_damping", column([](const RigidGroup& g) { return g.force_damping; }));  // fdx, fdy
   t.scalar("torque", column([](const RigidGroup& g) { return g.torque; }));
   if (!walls) {
     t.vector("force_collision", column([](const RigidGroup& g) { return g.force_collision; }));

@@ -54,7 +54,7 @@ void CudaBackend::upload(const Particles& P) {
   normal_.upload(P.normal);
   source_.upload(P.source);
   for (auto* a : {&rho_n_, &rho_s_, &p_n_, &vol_, &rc_, &div_v_, &scratch_real_}) a->resize(n_);
-  for (auto* a : {&v_n_, &v_s_, &lapV_, &G_, &shift_dir_}) a->resize(n_);
+  for (auto* a : {&v_n_, &v_s_, &lapV_, &G_, &shift_dir_, &odd_even_}) a->resize(n_);
   for (auto* a : {&gradV_, &gradV_n_}) a->resize(n_);
   for (auto* a : {&near_a_, &near_b_}) a->resize(n_);
   film_.resize(n_);

@@ -85,7 +85,7 @@ class CudaBackend final : public DeviceBackend {
   void band_levels(const LoadArrays& scalars, std::vector<Vec2>& num_den) override;
   void band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
                   const std::vector<real>& group_level, std::vector<Vec2>& fp, std::vector<Vec2>& fv,
-                  std::vector<Vec2>& torque) override;
+                  std::vector<Vec2>& torque, std::vector<Vec2>& fd) override;
   void surface_motion(const std::vector<GroupMotion>& motions, bool place) override;
 
   // (public: nvcc's extended device lambdas may not live in private member functions)
@@ -118,7 +118,7 @@ class CudaBackend final : public DeviceBackend {
   DArray<std::int64_t> id_;
   // work arrays
   DArray<real> rho_n_, rho_s_, p_n_, vol_, rc_, div_v_, p_new_, scratch_real_;
-  DArray<Vec2> v_n_, v_s_, lapV_, G_, shift_dir_, grad_w_;
+  DArray<Vec2> v_n_, v_s_, lapV_, G_, shift_dir_, grad_w_, odd_even_;
   DArray<Mat2> gradV_, gradV_n_;
   DArray<real> lap_w_, film_;
   DArray<std::uint8_t> isolated_;
@@ -132,7 +132,7 @@ class CudaBackend final : public DeviceBackend {
   DArray<GroupLoads> loads_;
   // band momentum loads (numerics.force = momentum): the step's entries, per-entry loads
   DArray<BandEntry> band_;
-  DArray<Vec2> group_pos_, band_fp_, band_fv_;
+  DArray<Vec2> group_pos_, band_fp_, band_fv_, band_fd_;
   DArray<Vec2> band_torque_;
   DArray<real> group_level_;
   DArray<GroupMotion> motions_;

@@ -94,6 +94,7 @@ LoadArrays CudaBackend::device_load_arrays(const LoadArrays& scalars) {
   a.p = p_.data();
   a.grad_v = gradV_.data();
   a.lap_v = lapV_.data();
+  a.odd_even = scalars.odd_even != nullptr ? odd_even_.data() : nullptr;
   a.grad_p_over_rho = G_.data();
   a.group_pos = group_pos_.data();
   a.group_level = group_level_.data();
@@ -112,7 +113,7 @@ void CudaBackend::band_levels(const LoadArrays& scalars, std::vector<Vec2>& num_
 
 void CudaBackend::band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
                              const std::vector<real>& group_level, std::vector<Vec2>& fp,
-                             std::vector<Vec2>& fv, std::vector<Vec2>& torque) {
+                             std::vector<Vec2>& fv, std::vector<Vec2>& torque, std::vector<Vec2>& fd) {
   group_pos_.upload(group_pos);
   group_level_.upload(group_level);
   const LoadArrays a = device_load_arrays(scalars);
@@ -120,14 +121,19 @@ void CudaBackend::band_loads(const LoadArrays& scalars, const std::vector<Vec2>&
   band_fp_.resize(ne);
   band_fv_.resize(ne);
   band_torque_.resize(ne);
+  band_fd_.resize(ne);
   const BandEntry* band = band_.data();
   Vec2* out_fp = band_fp_.data();
   Vec2* out_fv = band_fv_.data();
   Vec2* out_t = band_torque_.data();
-  each(0, ne, [=] __device__(std::size_t e) { band_entry_load(a, band[e], out_fp[e], out_fv[e], out_t[e]); });
+  Vec2* out_fd = band_fd_.data();
+  each(0, ne, [=] __device__(std::size_t e) {
+    band_entry_load(a, band[e], out_fp[e], out_fv[e], out_t[e], out_fd[e]);
+  });
   band_fp_.download(fp);
   band_fv_.download(fv);
   band_torque_.download(torque);
+  band_fd_.download(fd);
 }
 
 void CudaBackend::set_buffer_particles(const std::vector<std::uint32_t>& index, const Particles& P) {

@@ -46,8 +46,9 @@ void CudaBackend::rhie_chow_and_momentum(StageStart from, const StageParams& s) 
   const Vec2* v_start = (from == StageStart::StepStart ? v_n_ : v_s_).data();
   Vec2* v = v_.data();
   real* rc = rc_.data();
+  Vec2* odd_even = odd_even_.data();
   each(0, n_, [=] __device__(std::size_t i) {
-    rhie_chow_and_momentum_at(c, i, p, rho, G, gradV, lapV, v_start, s, rc, v);
+    rhie_chow_and_momentum_at(c, i, p, rho, G, gradV, lapV, v_start, s, rc, v, odd_even);
   });
 }
 

@@ -27,7 +27,7 @@ static_assert(checkpoint_detail::aggregate_field_count<SolverCounters>() == kSol
 static_assert(sizeof(Particles) == sizeof(std::size_t) + sizeof(std::int64_t) +
                                        (kParticlesFields - 2) * sizeof(std::vector<real>),
               "Particles changed: update particles_fields() and kParticlesFields in run/checkpoint.hpp");
-static_assert(sizeof(RigidGroup) == 296,
+static_assert(sizeof(RigidGroup) == 312,
               "RigidGroup changed: update rigid_group_fields(), kRigidGroupFields and this size "
               "(run/checkpoint.hpp), then bump kCheckpointVersion");
 static_assert(sizeof(SolverCounters) == kSolverCountersFields * sizeof(std::int64_t),
@@ -185,8 +185,8 @@ void check_values(const Checkpoint& c, const std::function<void(const std::strin
   const std::size_t n = P.size(), nb = P.n_boundary;
   for (std::size_t k = 0; k < c.groups.size(); ++k) {
     const RigidGroup& g = c.groups[k];
-    for (Vec2 v :
-         {g.pos, g.vel, g.acc, g.pos0, g.force_pressure, g.force_viscous, g.force_collision, g.vel_n})
+    for (Vec2 v : {g.pos, g.vel, g.acc, g.pos0, g.force_pressure, g.force_viscous, g.force_collision,
+                   g.force_damping, g.vel_n})
       if (!finite(v)) fail(fmt::format("non-finite vector of rigid group {}", k));
     for (real v : {g.angle, g.omega, g.alpha, g.angle0, g.mass, g.inertia, g.area, g.torque,
                    g.torque_collision, g.contact_speed, g.omega_n, g.removed_time})

@@ -224,14 +224,19 @@ std::optional<Failure> ProbeWriter::write(const Solver& s) {
 // ---- body history ---------------------------------------------------------------------------
 
 namespace {
-const std::vector<std::string> kBodyColumns{"time", "body",  "x",   "y",   "angle",  "vx",
-                                            "vy",   "omega", "fx",  "fy",  "torque", "fpx",
-                                            "fpy",  "fvx",   "fvy", "fcx", "fcy"};
-const std::vector<std::string> kWallColumns{"time", "wall", "fx", "fy", "fpx", "fpy", "fvx", "fvy", "torque"};
+// fdx, fdy: the odd-even damping's momentum sink next to the solid (RigidGroup::force_damping),
+// reported, not part of fx, fy.
+const std::vector<std::string> kBodyColumns{"time",  "body", "x",   "y",      "angle", "vx",  "vy",
+                                            "omega", "fx",   "fy",  "torque", "fpx",   "fpy", "fvx",
+                                            "fvy",   "fcx",  "fcy", "fdx",    "fdy"};
+const std::vector<std::string> kWallColumns{"time", "wall", "fx",     "fy",  "fpx", "fpy",
+                                            "fvx",  "fvy",  "torque", "fdx", "fdy"};
 // Units of the columns above. In 2D a force is per unit depth (N/m) and a torque N m/m.
-const std::vector<std::string> kBodyUnits{"s",   "-",     "m",   "m",   "rad", "m/s", "m/s", "rad/s", "N/m",
-                                          "N/m", "N m/m", "N/m", "N/m", "N/m", "N/m", "N/m", "N/m"};
-const std::vector<std::string> kWallUnits{"s", "-", "N/m", "N/m", "N/m", "N/m", "N/m", "N/m", "N m/m"};
+const std::vector<std::string> kBodyUnits{"s",     "-",   "m",   "m",     "rad", "m/s", "m/s",
+                                          "rad/s", "N/m", "N/m", "N m/m", "N/m", "N/m", "N/m",
+                                          "N/m",   "N/m", "N/m", "N/m",   "N/m"};
+const std::vector<std::string> kWallUnits{"s",   "-",   "N/m",   "N/m", "N/m", "N/m",
+                                          "N/m", "N/m", "N m/m", "N/m", "N/m"};
 }  // namespace
 
 const std::vector<std::string> kCoefficientColumns{"time", "body", "re", "re_body", "cd", "cl", "cm"};
@@ -283,11 +288,12 @@ std::optional<Failure> BodyHistoryWriter::write(const Solver& s) {
     auto& rows = is_wall ? walls : bodies;
     if (is_wall)
       rows.push_back({s.time(), static_cast<double>(wall++), f.x, f.y, g.force_pressure.x, g.force_pressure.y,
-                      g.force_viscous.x, g.force_viscous.y, g.torque});
+                      g.force_viscous.x, g.force_viscous.y, g.torque, g.force_damping.x, g.force_damping.y});
     else
       rows.push_back({s.time(), static_cast<double>(g.body), g.pos.x, g.pos.y, g.angle, g.vel.x, g.vel.y,
                       g.omega, f.x, f.y, g.torque, g.force_pressure.x, g.force_pressure.y, g.force_viscous.x,
-                      g.force_viscous.y, g.force_collision.x, g.force_collision.y});
+                      g.force_viscous.y, g.force_collision.x, g.force_collision.y, g.force_damping.x,
+                      g.force_damping.y});
     const std::string where =
         fmt::format("{} of {} '{}'", is_wall ? "walls.csv" : "bodies.csv", is_wall ? "wall" : "body", g.name);
     if (auto bad = non_finite(rows.back(), is_wall ? kWallColumns : kBodyColumns, where, g.pos)) return bad;

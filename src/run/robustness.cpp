@@ -124,8 +124,15 @@ std::vector<WallTrack> read_wall_tracks(const fs::path& run_dir, std::size_t wal
     out[w].t.push_back(r[it]);
     out[w].fx.push_back(r[ix]);
     out[w].fy.push_back(r[iy]);
+    out[w].fdx.push_back(column_or_zero(table, r, "fdx"));
+    out[w].fdy.push_back(column_or_zero(table, r, "fdy"));
   }
   return out;
+}
+
+double column_or_zero(const io::CsvTable& table, const std::vector<double>& r, std::string_view name) {
+  const auto it = std::find(table.header.begin(), table.header.end(), name);
+  return it == table.header.end() ? 0.0 : r[static_cast<std::size_t>(it - table.header.begin())];
 }
 
 /// Mean of y over the samples with t >= from.
@@ -189,6 +196,8 @@ std::vector<BodyTrack> read_body_tracks(const fs::path& run_dir, std::size_t bod
     BodyTrack& t = out[b];
     std::vector<double>* dst[] = {&t.t, &t.x, &t.y, &t.angle, &t.vx, &t.vy, &t.omega, &t.fx, &t.fy};
     for (int k = 0; k < 9; ++k) dst[k]->push_back(r[col[k]]);
+    t.fdx.push_back(column_or_zero(table, r, "fdx"));
+    t.fdy.push_back(column_or_zero(table, r, "fdy"));
   }
   return out;
 }

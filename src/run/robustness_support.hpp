@@ -5,10 +5,12 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "particula/case/case.hpp"
 #include "particula/geometry/shape.hpp"
+#include "particula/io/csv.hpp"
 #include "particula/run/robustness.hpp"
 #include "particula/run/validate.hpp"
 #include "particula/scene/scene.hpp"
@@ -57,7 +59,12 @@ std::vector<BodyTrack> tracks_or_throw(const std::filesystem::path& run_dir, con
 /// Rows of walls.csv: per wall, time and force.
 struct WallTrack {
   std::vector<double> t, fx, fy;
+  std::vector<double> fdx, fdy;  // the odd-even damping's sink (zeros for a file without the columns)
 };
+
+/// The value of column `name` in row r of `table`, 0 when the file has no such column (the
+/// fdx, fdy columns of bodies.csv and walls.csv came in session 45).
+double column_or_zero(const io::CsvTable& table, const std::vector<double>& r, std::string_view name);
 
 std::vector<WallTrack> read_wall_tracks(const std::filesystem::path& run_dir, std::size_t walls);
 /// Mean of y over the samples with t >= from.

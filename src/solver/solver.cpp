@@ -314,7 +314,9 @@ std::optional<Failure> unhealthy_group(const std::vector<RigidGroup>& groups) {
                            g.force_viscous.x,
                            g.force_viscous.y,
                            g.force_collision.x,
-                           g.force_collision.y};
+                           g.force_collision.y,
+                           g.force_damping.x,
+                           g.force_damping.y};
     if (std::all_of(std::begin(values), std::end(values), [](real v) { return std::isfinite(v); })) continue;
     Failure f;
     f.position = std::isfinite(g.pos.x) && std::isfinite(g.pos.y) ? g.pos : Vec2{};

@@ -293,6 +293,7 @@ LoadArrays Solver::load_arrays() const {
   a.p = P_.p.data();
   a.grad_v = gradV_.data();
   a.lap_v = lapV_.data();
+  a.odd_even = prm_.odd_even_damping > 0 && odd_even_.size() == P_.size() ? odd_even_.data() : nullptr;
   a.grad_p_over_rho = G_.data();
   a.group_pos = group_pos_.data();
   a.group_level = group_level_.data();
@@ -359,25 +360,29 @@ void Solver::momentum_group_loads() {
     band_fp_.resize(ne);
     band_fv_.resize(ne);
     band_torque_.resize(ne);
-    dev_->band_loads(a, group_pos_, group_level_, band_fp_, band_fv_, band_torque_);
+    band_fd_.resize(ne);
+    dev_->band_loads(a, group_pos_, group_level_, band_fp_, band_fv_, band_torque_, band_fd_);
   }
   sum_band(band_load_partial_, band_load_total_, [&](std::size_t e0, std::size_t e1, BandLoadSum* sums) {
     std::uint32_t sampled = std::numeric_limits<std::uint32_t>::max();
     BandSample s;
     for (std::size_t e = e0; e < e1; ++e) {
       const BandEntry& be = band_[e];
-      Vec2 efp, efv, et;
+      Vec2 efp, efv, et, efd;
       if (dev_) {
         efp = band_fp_[e];
         efv = band_fv_[e];
         et = band_torque_[e];
+        efd = band_fd_[e];
       } else {
         if (be.particle != sampled) s = band_sample(a, sampled = be.particle, be.area);
         band_entry_share(a, s, be, efp, efv, et);
+        efd = band_share_damping(s, be.phi);
       }
       BandLoadSum& sum = sums[be.slot];
       sum.fp += efp;
       sum.fv += efv;
+      sum.fd += efd;
       sum.torque += group_circle_[static_cast<std::size_t>(be.group)] && be.in_film ? et.y : et.x + et.y;
     }
   });
@@ -389,6 +394,7 @@ void Solver::momentum_group_loads() {
     smooth_pressure_load(a, k, fp, torque);
     g.force_pressure = fp + band_load_total_[k].fp;
     g.force_viscous = band_load_total_[k].fv;
+    g.force_damping = band_load_total_[k].fd;
     g.torque = torque + band_load_total_[k].torque;
   }
 }

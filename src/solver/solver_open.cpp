@@ -471,7 +471,7 @@ void Solver::remove_body(std::size_t k, std::size_t z) {
   g.removed_time = t_;
   g.vel = g.acc = g.vel_n = Vec2{};
   g.omega = g.alpha = g.omega_n = 0;
-  g.force_pressure = g.force_viscous = g.force_collision = Vec2{};
+  g.force_pressure = g.force_viscous = g.force_collision = g.force_damping = Vec2{};
   g.torque = g.torque_collision = 0;
   g.contact_speed = 0;
 

@@ -150,12 +150,15 @@ void Solver::rhie_chow_and_momentum(StageStart from, const StageParams& sp) {
   if (dev_) return dev_->rhie_chow_and_momentum(from, sp);
   const std::size_t n = P_.size();
   rc_.resize(n);
+  // the odd-even damping's acceleration, for the band loads of the same stage
+  odd_even_.resize(n);
+  Vec2* odd_even = prm_.momentum_force ? odd_even_.data() : nullptr;
   const SweepContext c = sweep_context();
   const Vec2* v_start = (from == StageStart::StepStart ? v_n_ : v_s_).data();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i)
-    rhie_chow_and_momentum_at(c, i, P_.p.data(), P_.rho.data(), G_.data(), gradV_.data(), lapV_.data(), v_start, sp, rc_.data(),
-                              P_.v.data());
+    rhie_chow_and_momentum_at(c, i, P_.p.data(), P_.rho.data(), G_.data(), gradV_.data(), lapV_.data(),
+                              v_start, sp, rc_.data(), P_.v.data(), odd_even);
 }
 
 void Solver::derivatives_and_continuity(StageStart from, const StageParams& sp) {

@@ -77,14 +77,14 @@ def test_csv_units_and_decimal_output_times(particula, tmp_path):
                        plots=False)
     run = particula.read_run(out)
     assert run.walls.units == {"time": "s", "wall": "-", "fx": "N/m", "fy": "N/m", "fpx": "N/m", "fpy": "N/m",
-                               "fvx": "N/m", "fvy": "N/m", "torque": "N m/m"}
+                               "fvx": "N/m", "fvy": "N/m", "torque": "N m/m", "fdx": "N/m", "fdy": "N/m"}
     assert list(np.unique(run.walls["time"])) == [0, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35]
     assert run.summary["end_time"] == 0.35
     assert "0.35000000000000003" not in (out / "walls.csv").read_text()
     # numpy's own readers skip the units line
     data = np.genfromtxt(out / "walls.csv", delimiter=",", names=True)
     assert data.dtype.names[:2] == ("time", "wall") and len(data) == run.walls.rows
-    assert np.loadtxt(out / "walls.csv", delimiter=",", skiprows=1).shape == (run.walls.rows, 9)
+    assert np.loadtxt(out / "walls.csv", delimiter=",", skiprows=1).shape == (run.walls.rows, 11)
 
 
 def test_body_csv_units(settling_run):

@@ -83,6 +83,9 @@ def test_body_states(particula):
     b = sim.body_states()
     assert b["velocity"][0, 1] < 0 and b["position"][0, 1] < 0.009
     assert np.array_equal(b["force"], b["force_pressure"] + b["force_viscous"])
+    # The odd-even damping's momentum sink next to the body: reported apart, small beside the load.
+    assert b["force_damping"].shape == (1, 2) and np.all(np.isfinite(b["force_damping"]))
+    assert 0 < np.linalg.norm(b["force_damping"][0]) < 0.1 * np.linalg.norm(b["force"][0])
     w = sim.wall_states()
     assert w["name"] == ["bottom", "right", "top", "left"]
     assert w["force"].shape == (4, 2)

@@ -33,7 +33,7 @@
 namespace particula {
 
 /// Bump when the layout or any field list below changes; older files are then refused.
-inline constexpr std::uint32_t kCheckpointVersion = 13;
+inline constexpr std::uint32_t kCheckpointVersion = 14;
 
 /// When an output stream ("bodies", "snapshots", "probe:<name>") was last written on its
 /// regular schedule. A resumed run drops rows after this time (the extra final-state rows of an
@@ -108,7 +108,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file);
 // static_asserts in src/run/checkpoint.cpp fail until you do.
 
 inline constexpr std::size_t kParticlesFields = 16;  // n_boundary, next_id + 14 arrays
-inline constexpr std::size_t kRigidGroupFields = 28;
+inline constexpr std::size_t kRigidGroupFields = 29;
 inline constexpr std::size_t kSolverCountersFields = 12;
 inline constexpr std::size_t kOpenFluxFields = 6;
 inline constexpr std::size_t kLoadBandStateFields = 3;
@@ -160,6 +160,7 @@ void rigid_group_fields(Ar& ar, G& g) {
   ar(g.force_pressure);
   ar(g.force_viscous);
   ar(g.force_collision);
+  ar(g.force_damping);
   ar(g.torque);
   ar(g.torque_collision);
   ar(g.contact_speed);

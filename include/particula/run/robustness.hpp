@@ -19,6 +19,7 @@ std::vector<ValidationEntry> robustness_entries();
 /// One body's history from bodies.csv (all columns the checks use).
 struct BodyTrack {
   std::vector<double> t, x, y, angle, vx, vy, omega, fx, fy;
+  std::vector<double> fdx, fdy;  // the odd-even damping's sink (zeros for a file without the columns)
   std::size_t size() const { return t.size(); }
 };
 

@@ -78,10 +78,10 @@ class DeviceBackend {
   /// stage; `scalars` gives the constants (its pointers are ignored).
   virtual void band_levels(const LoadArrays& scalars, std::vector<Vec2>& num_den) = 0;
   /// band_entry_load of every entry, with each group's X_B and smooth-pressure level (torque:
-  /// of the pressure part in x, of the viscous part in y).
+  /// of the pressure part in x, of the viscous part in y; fd: the odd-even damping's share).
   virtual void band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
                           const std::vector<real>& group_level, std::vector<Vec2>& fp, std::vector<Vec2>& fv,
-                          std::vector<Vec2>& torque) = 0;
+                          std::vector<Vec2>& torque, std::vector<Vec2>& fd) = 0;
   /// Surface particle velocities and accelerations from the group motions; with `place`, also
   /// positions and analytic normals.
   virtual void surface_motion(const std::vector<GroupMotion>& motions, bool place) = 0;

@@ -210,6 +210,7 @@ struct LoadArrays {
   const real* p = nullptr;
   const Mat2* grad_v = nullptr;
   const Vec2* lap_v = nullptr;
+  const Vec2* odd_even = nullptr;         // the odd-even damping's acceleration of the stage, or none
   const Vec2* grad_p_over_rho = nullptr;  // <grad P>_i / rho_i of the stage
   const Vec2* group_pos = nullptr;        // reference point X_B of each rigid group
   const real* group_level = nullptr;      // K_B of each group's smooth pressure field (smooth_pressure)
@@ -241,6 +242,7 @@ struct BandSample {
   Mat2 tau;         // mu (L + L^T - tr(L) I), L_ab = d_a V_b (renormalized, P.7)
   Vec2 m_rate_p;    // m_i (-<grad P>_i / rho_i): the pressure share of the particle's m (a - f)
   Vec2 m_rate_v;    // m_i nu <lap V>_i: the viscous share
+  Vec2 m_rate_d;    // m_i kappa (<lap V>_i - <div <grad V>>_i): the odd-even damping's (not a load)
   Vec2 x;
 };
 
@@ -260,6 +262,7 @@ PARTICULA_HD BandSample band_sample(const LoadArrays& a, std::uint32_t i, real a
   s.tau = a.mu * (L + transpose(L) - Mat2{div_v, 0, 0, div_v});
   s.m_rate_p = -s.m * a.grad_p_over_rho[i];
   s.m_rate_v = (s.m * a.nu) * a.lap_v[i];
+  if (a.odd_even != nullptr) s.m_rate_d = s.m * a.odd_even[i];
   return s;
 }
 
@@ -287,6 +290,17 @@ PARTICULA_HD void band_share_load(const BandSample& s, real phi, Vec2 grad_phi, 
   torque = Vec2{cross(lever, fp), cross(lever, fv)};
 }
 
+/// The odd-even damping's share of particle s on a solid of weight phi: -phi m_i a_damp,i, with
+/// the sign of a load. Not part of the load: the damping (sweeps.hpp, odd_even_velocity_at) is a
+/// numerical term that is zero for quadratic fields in the interior, but next to a surface, where
+/// the compact and the wide Laplacian see one-sided supports, or on a boundary layer the particles
+/// do not resolve, it takes momentum from the fluid like a wall stress. Counted in the load, it
+/// moved the DFG cylinder's drag away from the reference (docs/method-notes.md, "Forces on
+/// solids"); left out, the fluid's momentum budget misses it. So it is summed apart
+/// (RigidGroup::force_damping, the fdx and fdy columns of bodies.csv and walls.csv): the momentum
+/// the damping took from the fluid next to each solid, for budgets and for judging the resolution.
+PARTICULA_HD Vec2 band_share_damping(const BandSample& s, real phi) { return -phi * s.m_rate_d; }
+
 /// band_share_load of entry e with its particle's sample s and its group's K_B and X_B.
 PARTICULA_HD void band_entry_share(const LoadArrays& a, const BandSample& s, const BandEntry& e, Vec2& fp, Vec2& fv,
                                    Vec2& torque) {
@@ -299,9 +313,13 @@ PARTICULA_HD void band_entry_level(const LoadArrays& a, const BandEntry& e, real
   band_share_level(band_sample(a, e.particle, e.area), e.phi, num, den);
 }
 
-/// The load of band entry e (band_share_load of its particle on its solid).
-PARTICULA_HD void band_entry_load(const LoadArrays& a, const BandEntry& e, Vec2& fp, Vec2& fv, Vec2& torque) {
-  band_entry_share(a, band_sample(a, e.particle, e.area), e, fp, fv, torque);
+/// The load of band entry e (band_share_load of its particle on its solid) and the damping's
+/// share fd (band_share_damping).
+PARTICULA_HD void band_entry_load(const LoadArrays& a, const BandEntry& e, Vec2& fp, Vec2& fv, Vec2& torque,
+                                  Vec2& fd) {
+  const BandSample s = band_sample(a, e.particle, e.area);
+  band_entry_share(a, s, e, fp, fv, torque);
+  fd = band_share_damping(s, e.phi);
 }
 
 }  // namespace particula

@@ -40,6 +40,10 @@ struct RigidGroup {
   // contact force and its torque of the step (bodies/collision.hpp)
   Vec2 force_pressure, force_viscous, force_collision;
   real torque = 0;
+  // the momentum per unit time the odd-even velocity damping took from the fluid in this solid's
+  // load band (numerics.force = momentum; solver/momentum_loads.hpp, band_share_damping), with the
+  // sign of a load. Reported (bodies.csv, walls.csv), not a load: the solid does not feel it.
+  Vec2 force_damping;
   real torque_collision = 0;
 
   // spring-dashpot contacts: the largest approach speed of the body's current contact episode

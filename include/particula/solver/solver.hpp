@@ -461,6 +461,7 @@ class Solver {
   std::vector<real> group_w0_;
   std::vector<Mat2> B_, Bhat_, gradV_, gradV_n_;
   std::vector<Vec2> lapV_, G_, v_n_, v_s_, shift_dir_;
+  std::vector<Vec2> odd_even_;  // the odd-even damping's acceleration of the stage (band sums)
   // per-pair weights of the geometry sweep (solver/sweeps.hpp)
   std::vector<std::uint32_t> near_a_, near_b_;  // nearest surface particles (surface guard)
   std::vector<real> film_;                      // unresolved-film fraction of each particle, this step
@@ -480,11 +481,12 @@ class Solver {
   std::vector<std::size_t> band_block_first_;       // block b's groups: band_slot_group_[first[b]...]
   std::vector<std::int32_t> band_slot_group_;       // the group of each block's slot
   struct BandLoadSum {
-    Vec2 fp, fv;
+    Vec2 fp, fv, fd;  // fd: the odd-even damping's share (band_share_damping), not a load
     real torque = 0;
     BandLoadSum& operator+=(const BandLoadSum& o) {
       fp += o.fp;
       fv += o.fv;
+      fd += o.fd;
       torque += o.torque;
       return *this;
     }
@@ -492,7 +494,7 @@ class Solver {
   std::vector<Vec2> band_level_partial_, band_level_total_;  // (num, den) of K_B per block slot / group
   std::vector<BandLoadSum> band_load_partial_, band_load_total_;
   std::vector<std::uint8_t> group_circle_;  // group k is a circular body
-  std::vector<Vec2> band_fp_, band_fv_, band_x_, group_pos_;
+  std::vector<Vec2> band_fp_, band_fv_, band_fd_, band_x_, group_pos_;
   std::vector<Vec2> band_torque_;  // per band entry: torque of its pressure part (x) and viscous part (y)
   std::vector<real> group_level_;
   BodyCells band_bodies_;  // the bodies binned once a build for near_solids

@@ -502,11 +502,14 @@ PARTICULA_HD real film_relaxation_bracket(real rho_i, real p_fluid, const StageP
 
 /// Rhie-Chow bracket of the current P at particle i (in an unresolved film blended with the
 /// relaxation to its fluid neighbours, film_relaxation_bracket), then (fluid) the momentum stage
-/// from v_start. Race-free in one loop: it reads P, rho, G, grad V of the neighbours and writes
-/// only V_i.
-PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContext& c, std::size_t i, const real* p, const real* rho,
-                                            const Vec2* G, const Mat2* grad_v, const Vec2* lap_v,
-                                            const Vec2* v_start, const StageParams& s, real* rc, Vec2* v) {
+/// from v_start, and (odd_even not null) the odd-even damping's acceleration
+/// kappa (<lap V> - <div <grad V>>) of fluid particle i, which the band sums report apart from the
+/// loads (solver/momentum_loads.hpp, band_share_damping). Race-free in one loop: it reads P, rho,
+/// G, grad V of the neighbours and writes only particle i's entries.
+PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContext& c, std::size_t i, const real* p,
+                                            const real* rho, const Vec2* G, const Mat2* grad_v,
+                                            const Vec2* lap_v, const Vec2* v_start, const StageParams& s,
+                                            real* rc, Vec2* v, Vec2* odd_even) {
   rc[i] = rhie_chow_at(c, i, p, rho, G);
   const real film = c.film != nullptr ? c.film[i] : real(0);
   real p_fluid = 0;
@@ -514,7 +517,11 @@ PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContext& c, std::size_t i
     rc[i] = (1 - film) * rc[i] + film * film_relaxation_bracket(rho[i], p_fluid, s, c.kernel.h);
   if (c.kind[i] != Kind::Fluid) return;  // surfaces move with their solid; buffers are set by their boundary
   v[i] = momentum_stage(v_start[i], G[i], lap_v[i], s);
-  if (s.kappa > 0) v[i] += (s.dt * s.kappa) * odd_even_velocity_at(c, i, grad_v, lap_v[i]);
+  if (s.kappa > 0) {
+    const Vec2 oe = odd_even_velocity_at(c, i, grad_v, lap_v[i]);
+    v[i] += (s.dt * s.kappa) * oe;
+    if (odd_even != nullptr) odd_even[i] = s.kappa * oe;
+  }
 }
 
 /// The unresolved-film fraction of fluid particle i (boundary/surface_guard.hpp, film_fraction)
