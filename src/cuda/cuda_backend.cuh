@@ -107,6 +107,7 @@ class CudaBackend final : public DeviceBackend {
   WendlandC2 kernel_;
   real d0_, film_gap_;
   bool kernel_normals_, fatehi_manzari_, zeroth_order_gradient_, single_layer_;
+  bool odd_even_written_ = false;  // odd_even_ holds the damping's accelerations of the stage
   std::size_t n_ = 0, nb_ = 0, pairs_ = 0;
   real min_distance_ = 0;
 

@@ -94,7 +94,9 @@ LoadArrays CudaBackend::device_load_arrays(const LoadArrays& scalars) {
   a.p = p_.data();
   a.grad_v = gradV_.data();
   a.lap_v = lapV_.data();
-  a.odd_even = scalars.odd_even != nullptr ? odd_even_.data() : nullptr;
+  // the damping's accelerations of the stage, written by this device's momentum pass (the host's
+  // array is not: the host does not run that pass)
+  a.odd_even = odd_even_written_ ? odd_even_.data() : nullptr;
   a.grad_p_over_rho = G_.data();
   a.group_pos = group_pos_.data();
   a.group_level = group_level_.data();

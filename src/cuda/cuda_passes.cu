@@ -47,6 +47,7 @@ void CudaBackend::rhie_chow_and_momentum(StageStart from, const StageParams& s) 
   Vec2* v = v_.data();
   real* rc = rc_.data();
   Vec2* odd_even = odd_even_.data();
+  odd_even_written_ = s.kappa > 0;  // rhie_chow_and_momentum_at writes it only then
   each(0, n_, [=] __device__(std::size_t i) {
     rhie_chow_and_momentum_at(c, i, p, rho, G, gradV, lapV, v_start, s, rc, v, odd_even);
   });

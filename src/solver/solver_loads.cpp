@@ -293,6 +293,8 @@ LoadArrays Solver::load_arrays() const {
   a.p = P_.p.data();
   a.grad_v = gradV_.data();
   a.lap_v = lapV_.data();
+  // the damping's accelerations of the stage (rhie_chow_and_momentum; on a device, the device's own
+  // array: CudaBackend::device_load_arrays)
   a.odd_even = prm_.odd_even_damping > 0 && odd_even_.size() == P_.size() ? odd_even_.data() : nullptr;
   a.grad_p_over_rho = G_.data();
   a.group_pos = group_pos_.data();
