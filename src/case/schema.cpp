@@ -132,11 +132,11 @@ std::vector<KeySpec> make_schema() {
                "lubrication force of the contact model stands for the film (0 turns it off; "
                "docs/method-notes.md).",
                field(&Case::film_gap)),
-      real_key("numerics.load_band_motion", "-", def(0.0), closed(0, 0.5),
+      real_key("numerics.load_band_motion", "-", def(0.1), closed(0, 0.5),
                "With numerics.force = \"momentum\": how far, in d0, a solid or a particle (relative to its "
                "closest solid) may move before the band of the momentum loads is built again; less between "
-               "two solids close together (docs/method-notes.md, \"The kept band\"). 0, the default, "
-               "builds it every step; 0.1 makes steps with many bodies faster (docs/performance.md).",
+               "two solids close together (docs/method-notes.md, \"The kept band\"). 0 builds it every "
+               "step (the reference the default is measured against); 0.1 makes many-body steps faster.",
                field(&Case::load_band_motion)),
       int_key("numerics.wall_pressure_sweeps", def(std::int64_t{1}), closed(1, 50),
               "Sweeps of the single-layer wall pressure update per step.",
@@ -477,8 +477,8 @@ std::vector<SectionSpec> make_sections() {
           "(guard_events in summary.json count its interventions: many events mean the flow is "
           "under-resolved next to a surface); `rhie_chow_factor` above 1 only to reproduce older "
           "runs; `normals = \"kernel\"` and `laplacian = \"morris\"` and `boundary = \"dummy\"` are "
-          "the paper's baselines for comparison; `load_band_motion` 0.1 makes many-body steps about a "
-          "third shorter, not yet the default (docs/validation.md, \"The kept band\"). A run that stops "
+          "the paper's baselines for comparison; `load_band_motion` 0 builds the loads' band every "
+          "step (the kept band's reference: docs/validation.md, \"The kept band\"). A run that stops "
           "with exit 3 names the likely cause and the keys to look at."),
       table_section("initial", "Initial particle arrangement and velocity field."),
       table_section("output", "What is written to the run directory, and how often."),

@@ -24,9 +24,8 @@ bool Solver::load_band_moved(const std::vector<Vec2>& x) {
   real largest_solid = 0;
   for (std::size_t k = 0; k < ng; ++k) {
     const RigidGroup& g = groups_[k];
-    const real turn = std::fabs(g.angle - band_built_.angle[k]);
-    band_turn_cs_[k] =
-        Vec2{std::cos(g.angle - band_built_.angle[k]), std::sin(g.angle - band_built_.angle[k])};
+    const real turned = g.angle - band_built_.angle[k], turn = std::fabs(turned);
+    band_turn_cs_[k] = Vec2{std::cos(turned), std::sin(turned)};
     if (g.is_wall) {
       const WallPiece& w = prm_.walls[k];
       band_shift_[k] = Vec2{};
@@ -73,14 +72,15 @@ bool Solver::solids_closed_in() {
   // only while their relative motion stays below kBandGapShare g (g at least kBandGapFloor d0),
   // which is tighter than load_band_motion for gaps below load_band_motion / kBandGapShare.
   const real near = prm_.load_band_motion / kBandGapShare, floor = kBandGapFloor * prm_.d0;
-  const auto closed_in = [&](std::size_t a, std::size_t b, real gap) {
-    const real relative = norm(band_shift_[a] - band_shift_[b]) + band_turn_reach_[a] + band_turn_reach_[b];
-    return relative > kBandGapShare * std::max(gap, floor);
+  // how far the two surfaces can have closed in, from a bound on their relative shift
+  const auto closing = [&](std::size_t a, std::size_t b, real shift) {
+    return shift + band_turn_reach_[a] + band_turn_reach_[b];
   };
-  const auto may_close = [&](std::size_t a, std::size_t b) {
-    const real bound =
-        norm(band_shift_[a]) + norm(band_shift_[b]) + band_turn_reach_[a] + band_turn_reach_[b];
-    return bound > kBandGapShare * floor;
+  const auto closed_in = [&](std::size_t a, std::size_t b, real gap) {
+    return closing(a, b, norm(band_shift_[a] - band_shift_[b])) > kBandGapShare * std::max(gap, floor);
+  };
+  const auto may_close = [&](std::size_t a, std::size_t b) {  // before the gap is known
+    return closing(a, b, norm(band_shift_[a]) + norm(band_shift_[b])) > kBandGapShare * floor;
   };
   list_bodies();
   contact_candidates(body_pos_, body_bound_, near, domain_, band_pairs_);

@@ -191,7 +191,7 @@ struct Case {
   real odd_even_damping = 0.005;
   real surface_guard = 0.25;
   real film_gap = 2.0;
-  real load_band_motion = 0;  // d0
+  real load_band_motion = 0.1;  // d0
   int wall_pressure_sweeps = 1;
 
   // [initial]
