@@ -150,7 +150,8 @@ void Solver::rhie_chow_and_momentum(StageStart from, const StageParams& sp) {
   if (dev_) return dev_->rhie_chow_and_momentum(from, sp);
   const std::size_t n = P_.size();
   rc_.resize(n);
-  // the odd-even damping's acceleration, for the band loads of the same stage
+  // the odd-even damping's acceleration, for the band sums of the same stage (its sink, reported
+  // apart from the loads: band_share_damping)
   odd_even_.resize(n);
   Vec2* odd_even = prm_.momentum_force ? odd_even_.data() : nullptr;
   const SweepContext c = sweep_context();
