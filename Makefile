@@ -47,18 +47,16 @@ bench-cases: build
 
 # Cost of bodies: a step with 1000 free circles (10 particles across) in a closed box against a
 # step of the same box with fluid only and the same particle count (bench/many_bodies.py writes
-# both cases into build/bench-bodies). Compare the throughputs (particle-steps/s). Both run
-# untimed to t = BENCH_ADVANCE first (the bodies then fall at about their fastest), so that the
-# timed steps build the kept band of the momentum loads as often as a developed flow does; the
-# output counts those builds (numerics.load_band_motion; BENCH_ADVANCE=0 times steps from rest).
+# both cases into build/bench-bodies). Both run untimed to t = BENCH_ADVANCE first (the bodies
+# then fall at about their fastest), so that the timed steps build the kept band of the momentum
+# loads as often as a developed flow does (BENCH_ADVANCE=0 times steps from rest).
+# bench/bodies_cost.py times them in BENCH_ROUNDS alternating rounds and compares the mean
+# seconds per step: one pair of runs varies as much as the cost measured. BENCH_ARGS go to
+# particula_bench_e2e (e.g. BENCH_ARGS="--threads 1").
 BENCH_ADVANCE ?= 0.04
+BENCH_ROUNDS ?= 3
 bench-bodies: build
-	python3 bench/many_bodies.py build/bench-bodies --bodies 1000
-	@for c in many_bodies no_bodies; do \
-	  ./build/release/bench/particula_bench_e2e --case build/bench-bodies/$$c.toml --advance $(BENCH_ADVANCE) \
-	    --steps 30 --warmup 5 $(BENCH_ARGS) \
-	    | grep -E '^(case|particles|steps|band builds|throughput|phases|  |RESULT)' || exit 1; \
-	done
+	python3 bench/bodies_cost.py --bodies 1000 --rounds $(BENCH_ROUNDS) --steps 30 --advance $(BENCH_ADVANCE) $(BENCH_ARGS)
 
 clean:
 	rm -rf build
