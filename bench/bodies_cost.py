@@ -5,9 +5,9 @@ Writes both cases with bench/many_bodies.py, then times them with particula_benc
 alternating rounds (bodies, fluid only, bodies, ...) and compares the mean seconds per step.
 One pair of runs is not enough on a shared or virtual machine: here a run's step time varies
 by 10-20 % from one run to the next (docs/performance.md, "The cost of bodies"), as much as
-the cost being measured, so the rounds alternate and the summary gives the ratio of the means
-with the spread of the rounds' own ratios. Arguments this script does not know (e.g.
-`--threads 1`) go to particula_bench_e2e. Usage:
+the cost being measured, so the rounds alternate and the summary gives the ratio of the means,
+the spread of the rounds' own ratios and the mean time of each phase of the step. Arguments
+this script does not know (e.g. `--threads 1`) go to particula_bench_e2e. Usage:
 
   bench/bodies_cost.py [--rounds N] [--steps N] [--advance T] [--bodies N] [BENCH ARGS...]
 """
@@ -19,6 +19,8 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASES = ("many_bodies", "no_bodies")
+# the phases of particula_bench_e2e's RESULT line (seconds over the timed steps)
+PHASES = ("neighbors", "geometry", "operators", "wall_pressure", "bodies", "integration", "shifting")
 
 
 def result_fields(output):
@@ -39,6 +41,7 @@ def time_case(bench, case_file, a, extra):
     r = result_fields(run.stdout)
     steps = int(r["steps"])
     return {"step": float(r["wall_s"]) / steps, "bodies": float(r["bodies"]) / steps,
+            "phases": {p: float(r[p]) / steps for p in PHASES if p in r},
             "builds": int(r.get("band_builds", 0)), "steps": steps, "particles": int(r["particles"]),
             "threads": int(r["threads"])}
 
@@ -73,6 +76,10 @@ def main():
           f"{first['threads']} threads; {a.rounds} rounds of {a.steps} steps from t = {a.advance:g} s")
     print(f"mean s/step: {mean['many_bodies']:.4f} with {a.bodies} bodies, {mean['no_bodies']:.4f} fluid only: "
           f"a step with bodies costs {100 * (mean['many_bodies'] / mean['no_bodies'] - 1):+.1f} %")
+    print("phase          s/step with bodies   fluid only   difference")
+    for p in PHASES:
+        b, f = (statistics.fmean(t["phases"].get(p, 0.0) for t in runs[c]) for c in CASES)
+        print(f"{p:13s}  {b:.5f}              {f:.5f}      {b - f:+.5f}")
     print(f"rounds' own ratios: min {ratios[0]:.3f}, median {statistics.median(ratios):.3f}, max {ratios[-1]:.3f}")
     print(f"RESULT bodies={a.bodies} rounds={a.rounds} steps={a.steps} advance={a.advance:g} "
           f"threads={first['threads']} bodies_s_per_step={mean['many_bodies']:.6g} "
