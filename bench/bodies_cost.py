@@ -40,7 +40,7 @@ def time_case(bench, case_file, a, extra):
         raise SystemExit(f"error: {' '.join(cmd)} exited with {run.returncode}")
     r = result_fields(run.stdout)
     steps = int(r["steps"])
-    return {"step": float(r["wall_s"]) / steps, "bodies": float(r["bodies"]) / steps,
+    return {"step": float(r["wall_s"]) / steps,
             "phases": {p: float(r[p]) / steps for p in PHASES if p in r},
             "builds": int(r.get("band_builds", 0)), "steps": steps, "particles": int(r["particles"]),
             "threads": int(r["threads"])}
@@ -67,7 +67,7 @@ def main():
         for c in CASES:
             t = time_case(a.bench, os.path.join(a.dir, c + ".toml"), a, extra)
             runs[c].append(t)
-            print(f"{k + 1:5d}  {c:12s}  {t['step']:.4f}   {t['bodies']:.4f}        {t['builds']} of {t['steps']}",
+            print(f"{k + 1:5d}  {c:12s}  {t['step']:.4f}   {t['phases']['bodies']:.4f}        {t['builds']} of {t['steps']}",
                   flush=True)
     mean = {c: statistics.fmean(t["step"] for t in runs[c]) for c in CASES}
     ratios = sorted(b["step"] / f["step"] for b, f in zip(runs["many_bodies"], runs["no_bodies"]))
