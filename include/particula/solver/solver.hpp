@@ -20,79 +20,12 @@
 #include "particula/solver/device_backend.hpp"
 #include "particula/solver/momentum_loads.hpp"
 #include "particula/solver/particles.hpp"
+#include "particula/solver/physics_params.hpp"
 #include "particula/solver/rigid_group.hpp"
 #include "particula/solver/sweeps.hpp"
 #include "particula/sph/kernel.hpp"
 
 namespace particula {
-
-/// A rigid body's shape and motion law (index = RigidGroup::body).
-struct BodyParams {
-  std::string name;
-  Shape shape;
-  std::vector<SurfaceSample> samples;  // body frame, used by the contact model
-  BodyMotion motion = BodyMotion::Free;
-  Vec2 velocity;  // prescribed constant velocity (no schedule)
-  real omega = 0;
-  std::vector<MotionKnot> schedule;  // prescribed piecewise-linear motion
-  // A fixed body standing on walls or crossing them (scene: its part beyond the walls left out):
-  // the stretches of walls it covers, and the area of its part in the fluid region with that
-  // part's centroid (world frame). The smooth pressure's force on it is taken over its wetted
-  // surface from these (Solver::smooth_pressure_load). Other bodies: the whole body.
-  struct Cover {
-    std::size_t wall = 0;
-    real s0 = 0, s1 = 0;  // fractions along the wall
-  };
-  std::vector<Cover> covers;
-  real area_in = 0;
-  Vec2 centroid_in;
-};
-
-/// Everything the physics needs, in SI units (filled from a Case by the scene builder).
-struct PhysicsParams {
-  real d0 = 0, h = 0;
-  real rho0 = 1000, nu = 0, c = 0, p0 = 0;
-  Vec2 gravity;
-  bool gravity_in_fluid = false;
-  Vec2 body_force;
-  real cfl = 0.5;
-  real dt_max = 0;
-  bool fatehi_manzari = true;   // false: Morris Laplacian (baseline)
-  bool zeroth_order_gradient = true;  // numerics.gradient = "consistent" (sweeps.hpp, geometry_at)
-  bool single_layer = true;     // false: dummy-particle boundary (baseline)
-  bool kernel_normals = true;   // false: analytic normals
-  bool momentum_force = false;  // loads from the fluid's momentum balance (true) or P.26-P.27 (false)
-  real rhie_chow_factor = 1;
-  real odd_even_damping = 0.005;  // alpha of the velocity odd-even damping, kappa = alpha c h
-  real shifting_beta = 0.05;
-  real surface_guard = 0.25;  // keep-out distance of fluid from surfaces, in d0 (0: off)
-  real film_gap = 2.0;  // gap below which fluid between two surfaces is an unresolved film, in d0 (0: off)
-  int wall_pressure_sweeps = 1;
-  real rho_min_ratio = 0.5, rho_max_ratio = 2.0;
-  int reorder_interval = 50;  // steps between cell reorderings of the fluid block
-  // numerics.load_band_motion (m): the band of the momentum loads is kept until a solid surface
-  // or a particle (relative to its closest solid) has moved this far since it was built, less
-  // between two solids close together (0: built every step)
-  real load_band_motion = 0;
-  std::vector<BodyParams> bodies;
-  std::vector<WallPiece> walls;  // at t = 0 (a turning wall: Solver::wall_now)
-  // contacts (bodies/collision.hpp; docs/method-notes.md, Contacts)
-  ContactModel collision_model = ContactModel::SpringDashpot;
-  real collision_stiffness = 0;  // spring_dashpot: k_n (0 = derived); paper: k of P.38
-  real collision_range = 0;      // contact distance delta_c (m); 0 = 0.5 d0 (spring_dashpot), 3 d0 (paper)
-  real collision_restitution = 0.8;
-  real collision_friction = 0;
-  real collision_max_overlap = 0.1;  // delta_max / d0
-  bool collision_lubrication = true;
-  real collision_lubrication_range = 0;  // m; 0 = 2 d0
-  bool cuda = false;                     // particle passes on the GPU (--backend cuda)
-  // open boundaries (boundary/open_boundary.hpp): inlets then outlets, the zone and its case entry
-  std::vector<OpenZone> open;
-  std::vector<OpenSpec> open_specs;
-  // each open boundary's screen (Case::open_screen_offset): a segment inside the fluid, parallel to
-  // the line, that bodies meet like a fixed wall; the fluid passes it
-  std::vector<WallPiece> open_screens;
-};
 
 /// What crossed an open boundary (zone) since the start of the run; checkpointed.
 struct OpenFlux {
