@@ -63,7 +63,7 @@ void BM_Geometry(benchmark::State& state) {  // neighbour list + B, Bhat, normal
 void BM_VelocityDerivatives(benchmark::State& state) {
   Solver& s = solver_for(static_cast<int>(state.range(0)));
   const auto v = s.particles().v;
-  for (auto _ : state) s.compute_velocity_derivatives(v);
+  for (auto _ : state) s.host().compute_velocity_derivatives(v);
   set_items(state, s);
 }
 
@@ -71,15 +71,15 @@ void BM_PressureGradient(benchmark::State& state) {
   Solver& s = solver_for(static_cast<int>(state.range(0)));
   const auto p = s.particles().p;
   const auto rho = s.particles().rho;
-  for (auto _ : state) s.compute_pressure_gradient(p, rho);
+  for (auto _ : state) s.host().compute_pressure_gradient(p, rho);
   set_items(state, s);
 }
 
 void BM_RhieChow(benchmark::State& state) {
   Solver& s = solver_for(static_cast<int>(state.range(0)));
-  const SweepContext c = s.sweep_context();
+  const SweepContext c = s.host().sweep_context();
   const auto& P = s.particles();
-  const Vec2* G = s.grad_p_over_rho().data();
+  const Vec2* G = s.host().grad_p_over_rho().data();
   std::vector<real> rc(P.size());
   for (auto _ : state) {
 #pragma omp parallel for schedule(static)
@@ -91,7 +91,7 @@ void BM_RhieChow(benchmark::State& state) {
 
 void BM_WallPressure(benchmark::State& state) {  // items = boundary particles
   Solver& s = solver_for(static_cast<int>(state.range(0)));
-  const SweepContext c = s.sweep_context();
+  const SweepContext c = s.host().sweep_context();
   const auto& P = s.particles();
   std::vector<real> out(P.n_boundary);
   const real min_den = wall_pressure_min_den(1000, c.kernel.h);

@@ -11,7 +11,7 @@
 
 #include "particula/case/load.hpp"
 #include "particula/scene/scene.hpp"
-#include "particula/solver/device_backend.hpp"
+#include "particula/solver/backend.hpp"
 #include "particula/solver/solver.hpp"
 
 namespace particula {

@@ -74,16 +74,16 @@ TEST_P(GradientSchemes, GradientOfLinearFieldIsExact) {
     v[i] = A * P.x[i] + b;
     p[i] = dot(gp, P.x[i]) + 4.0;
   }
-  sv.compute_velocity_derivatives(v);
-  sv.compute_pressure_gradient(p, rho);
+  sv.host().compute_velocity_derivatives(v);
+  sv.host().compute_pressure_gradient(p, rho);
   // grad V has L_ab = d_a V_b = A_ba.
   const Mat2 L = transpose(A);
   int counted[3] = {0, 0, 0};
   for (std::size_t i = 0; i < P.size(); ++i) {
     const Where w = where(sv, i);
-    const Mat2 e = sv.grad_v()[i] - L;
+    const Mat2 e = sv.host().grad_v()[i] - L;
     const real err = std::sqrt(ddot(e, e)) / std::sqrt(ddot(L, L));
-    const real errp = norm(sv.grad_p_over_rho()[i] - gp) / norm(gp);
+    const real errp = norm(sv.host().grad_p_over_rho()[i] - gp) / norm(gp);
     EXPECT_LT(err, 1e-10) << "particle " << i << " kind " << static_cast<int>(w);
     EXPECT_LT(errp, 1e-10) << "particle " << i;
     ++counted[static_cast<int>(w)];
@@ -118,10 +118,10 @@ TEST(Operators, ConsistentGradientLeavesOutAParticlesOwnPressure) {
       if (apart) picked.push_back(i);
     }
     for (std::size_t i : picked) p[i] = 1.0;
-    sv.compute_pressure_gradient(p, rho);
+    sv.host().compute_pressure_gradient(p, rho);
     int near_wall = 0;
     for (std::size_t i : picked) {
-      largest[scheme] = std::max(largest[scheme], norm(sv.grad_p_over_rho()[i]) * h);
+      largest[scheme] = std::max(largest[scheme], norm(sv.host().grad_p_over_rho()[i]) * h);
       near_wall += where(sv, i) == Where::NearWall ? 1 : 0;
     }
     EXPECT_GT(picked.size(), 40U);
@@ -144,13 +144,13 @@ TEST(Operators, FatehiManzariLaplacianOfQuadraticIsExact) {
     const Vec2 x = P.x[i];
     v[i] = {0.5 * dot(x, H1 * x) + dot(g1, x) + 0.1, 0.5 * dot(x, H2 * x) + dot(g2, x) - 0.2};
   }
-  sv.compute_velocity_derivatives(v);
+  sv.host().compute_velocity_derivatives(v);
   const Vec2 exact{trace(H1), trace(H2)};
   int interior = 0, near = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {
     const Where w = where(sv, i);
     if (w == Where::Wall) continue;
-    const real err = norm(sv.lap_v()[i] - exact) / norm(exact);
+    const real err = norm(sv.host().lap_v()[i] - exact) / norm(exact);
     EXPECT_LT(err, 1e-8) << "particle " << i << (w == Where::Interior ? " interior" : " near wall");
     (w == Where::Interior ? interior : near)++;
   }
@@ -168,11 +168,11 @@ TEST(Operators, MorrisLaplacianIsNotExactNextToWalls) {
   const Mat2 H{1.3, 0.4, 0.4, -0.7};
   std::vector<Vec2> v(P.size());
   for (std::size_t i = 0; i < P.size(); ++i) v[i] = {0.5 * dot(P.x[i], H * P.x[i]), 0};
-  sv.compute_velocity_derivatives(v);
+  sv.host().compute_velocity_derivatives(v);
   real worst_near = 0;
   for (std::size_t i = 0; i < P.size(); ++i)
     if (where(sv, i) == Where::NearWall)
-      worst_near = std::max(worst_near, std::fabs(sv.lap_v()[i].x - trace(H)) / std::fabs(trace(H)));
+      worst_near = std::max(worst_near, std::fabs(sv.host().lap_v()[i].x - trace(H)) / std::fabs(trace(H)));
   EXPECT_GT(worst_near, 0.01) << "the Morris form should show a wall error above 1 %";
 }
 

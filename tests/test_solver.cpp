@@ -69,7 +69,7 @@ TEST(Solver, NeighbourListMatchesBruteForce) {
   c.perturbation = 0.3;
   Solver s = make_solver(c);
   const auto& P = s.particles();
-  const auto& nl = s.neighbors();
+  const auto& nl = s.host().neighbors();
   const real h = s.params().h;
   real closest = std::numeric_limits<real>::infinity();
   for (std::size_t i = 0; i < P.size(); ++i) {

@@ -159,7 +159,7 @@ TEST(OddEvenDamping, ExactOnLinearAndSmallOnQuadraticFields) {
   auto b = make_box();
   Solver& s = *b.solver;
   const auto& P = s.particles();
-  const SweepContext c = s.sweep_context();
+  const SweepContext c = s.host().sweep_context();
   // Linear field: both Laplacians are exactly zero (renormalized gradient exact for linear fields).
   // Quadratic field: the compact Laplacian is exact, the wide one (gradient applied twice) has
   // the gradient's truncation error, a few per cent of the Laplacian on this 20 % perturbed lattice.
@@ -170,13 +170,13 @@ TEST(OddEvenDamping, ExactOnLinearAndSmallOnQuadraticFields) {
       v[i] = {0.3 + 1.2 * x.x - 0.7 * x.y + q * (0.9 * x.x * x.x - 0.4 * x.x * x.y + 0.6 * x.y * x.y),
               -0.2 + 0.5 * x.x + 0.8 * x.y + q * (-0.3 * x.x * x.x + 1.1 * x.x * x.y - 0.5 * x.y * x.y)};
     }
-    s.compute_velocity_derivatives(v);
+    s.host().compute_velocity_derivatives(v);
     const Vec2 lap_exact{q * (2 * 0.9 + 2 * 0.6), q * (-2 * 0.3 - 2 * 0.5)};
     real worst = 0;
     int n = 0;
     for (std::size_t i = 0; i < P.size(); ++i) {
       if (!interior(s, i)) continue;
-      worst = std::max(worst, norm(odd_even_velocity_at(c, i, s.grad_v().data(), s.lap_v()[i])));
+      worst = std::max(worst, norm(odd_even_velocity_at(c, i, s.host().grad_v().data(), s.host().lap_v()[i])));
       ++n;
     }
     ASSERT_GT(n, 50);
@@ -198,12 +198,12 @@ TEST(OddEvenDamping, DampsACheckerboardMode) {
     const long col = std::lround(P.x[i].x / d0);
     v[i] = {0, col % 2 == 0 ? 1.0 : -1.0};
   }
-  s.compute_velocity_derivatives(v);
-  const SweepContext c = s.sweep_context();
+  s.host().compute_velocity_derivatives(v);
+  const SweepContext c = s.host().sweep_context();
   real power = 0, scale = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {
     if (!interior(s, i)) continue;
-    const Vec2 d = odd_even_velocity_at(c, i, s.grad_v().data(), s.lap_v()[i]);
+    const Vec2 d = odd_even_velocity_at(c, i, s.host().grad_v().data(), s.host().lap_v()[i]);
     power += dot(d, v[i]);
     scale += norm2(v[i]);
   }

@@ -10,6 +10,8 @@
 #include <thrust/sort.h>
 #include <thrust/transform_reduce.h>
 
+#include <algorithm>
+#include <chrono>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -30,6 +32,9 @@ CudaBackend::CudaBackend(const PhysicsParams& prm, const GridGeometry& grid, con
       single_layer_(prm.single_layer) {
   counters_.resize(kCounters);
   zero_counters();
+  real margin = 0;  // the buffers behind open boundaries lie outside the domain
+  for (const OpenZone& z : prm.open) margin = std::max(margin, z.depth);
+  host_grid_.setup(grid.domain, prm.h, margin);
   zones_.upload(prm.open);  // the open lines, for the shifting limit next to them
   // Surface particles are addressed through their group index: check the layout once.
   for (std::size_t i = 0; i < P.n_boundary; ++i)
@@ -112,7 +117,18 @@ void CudaBackend::reorder_fluid() {
   permute(id_);
 }
 
-void CudaBackend::refresh_geometry(SolverCounters& cnt) {
+void CudaBackend::refresh_geometry(SolverCounters& cnt, PhaseTimes& times) {
+  const auto t0 = std::chrono::steady_clock::now();
+  device_geometry(cnt);
+  times.geometry += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+const CellGrid& CudaBackend::host_grid(const Particles& P) {
+  host_grid_.bin(P.x);
+  return host_grid_;
+}
+
+void CudaBackend::device_geometry(SolverCounters& cnt) {
   const std::size_t n = n_;
   const GridGeometry grid = grid_;
   const Vec2* x = x_.data();
@@ -289,7 +305,7 @@ bool cuda_backend_available(std::string* why) {
   return true;
 }
 
-std::unique_ptr<DeviceBackend> make_cuda_backend(const PhysicsParams& prm, const GridGeometry& grid,
+std::unique_ptr<Backend> make_cuda_backend(const PhysicsParams& prm, const GridGeometry& grid,
                                                  const WendlandC2& kernel, const Particles& P) {
   std::string why;
   if (!cuda_backend_available(&why)) throw std::runtime_error(why);

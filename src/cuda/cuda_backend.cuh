@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "device_array.cuh"
-#include "particula/solver/device_backend.hpp"
+#include "particula/solver/backend.hpp"
 #include "particula/solver/solver.hpp"
 
 namespace particula::gpu {
@@ -50,18 +50,26 @@ enum Counter {
   kCounters
 };
 
-class CudaBackend final : public DeviceBackend {
+class CudaBackend final : public Backend {
  public:
   CudaBackend(const PhysicsParams& prm, const GridGeometry& grid, const WendlandC2& kernel,
               const Particles& P);
 
+  const char* name() const override { return "cuda"; }
+  bool on_host() const override { return false; }
   // state and transfers (cuda_backend.cu)
   void upload(const Particles& P) override;
   void download(Particles& P) override;
   void download_positions(std::vector<Vec2>& x) override { x_.download(x); }
   void download_pressures(std::vector<real>& p) override { p_.download(p); }
   void reorder_fluid() override;
-  void refresh_geometry(SolverCounters& cnt) override;
+  void refresh_geometry(SolverCounters& cnt, PhaseTimes& times) override;
+  /// The neighbour list, volumes and geometry sweep on the device (refresh_geometry's work).
+  void device_geometry(SolverCounters& cnt);
+  const CellGrid& host_grid(const Particles& P) override;
+  /// The pairs of buffer particles stay in the device's min_distance (they were never left out
+  /// there: the buffers' particles are placed a lattice spacing apart).
+  void skip_buffer_pairs_in_min_distance() override {}
   std::size_t pair_count() const override { return pairs_; }
   real min_distance() const override { return min_distance_; }
   real max_speed() override;
@@ -104,6 +112,7 @@ class CudaBackend final : public DeviceBackend {
 
  private:
   GridGeometry grid_;
+  CellGrid host_grid_;  // the host's binning of the downloaded positions (open boundaries' fits)
   WendlandC2 kernel_;
   real d0_, film_gap_;
   bool kernel_normals_, fatehi_manzari_, zeroth_order_gradient_, single_layer_;

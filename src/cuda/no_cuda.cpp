@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-#include "particula/solver/device_backend.hpp"
+#include "particula/solver/backend.hpp"
 
 namespace particula {
 
@@ -13,7 +13,7 @@ bool cuda_backend_available(std::string* why) {
   return false;
 }
 
-std::unique_ptr<DeviceBackend> make_cuda_backend(const PhysicsParams&, const GridGeometry&, const WendlandC2&,
+std::unique_ptr<Backend> make_cuda_backend(const PhysicsParams&, const GridGeometry&, const WendlandC2&,
                                                  const Particles&) {
   std::string why;
   cuda_backend_available(&why);

@@ -27,7 +27,7 @@
 #include "particula/run/run_dir.hpp"
 #include "particula/run/version.hpp"
 #include "particula/scene/scene.hpp"
-#include "particula/solver/device_backend.hpp"
+#include "particula/solver/backend.hpp"
 #include "session.hpp"
 
 namespace particula {

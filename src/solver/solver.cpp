@@ -29,50 +29,64 @@ Solver::Solver(PhysicsParams params, Domain domain, Particles particles, std::ve
       groups_(std::move(groups)),
       kernel_(params.h),
       t_(t0),
-      steps_(step0) {
-  real margin = 0;  // the buffers behind open boundaries lie outside the domain
-  for (const OpenZone& z : prm_.open) margin = std::max(margin, z.depth);
-  grid_.setup(domain_, prm_.h, margin);
+      steps_(step0),
+      cpu_(std::make_unique<CpuBackend>(prm_, domain_, kernel_, P_)),
+      backend_(cpu_.get()) {
   open_flux_.resize(prm_.open.size());
   if (start == SolverStart::Fresh) {
-    place_boundary(t_);
+    place_boundary();
     refresh_geometry();
     open_ghost_weights();
     open_velocities(t_);
     open_pressures();
     // Initial wall pressure consistent with the initial fluid state (P.20): iterate the Jacobi
     // sweeps to convergence once, since boundary particles start without a pressure.
-    compute_velocity_derivatives(P_.v);
-    const int sweeps = prm_.wall_pressure_sweeps;
-    prm_.wall_pressure_sweeps = 50;
-    boundary_pressure();
-    prm_.wall_pressure_sweeps = sweeps;
+    cpu_->derivatives_sweep(P_.v, nullptr);
+    cpu_->boundary_pressure(50, stage_params(dt_), counters_);
   }
   // A restart takes the checkpointed state exactly as it is. The GPU backend starts from the
   // host state prepared above; everything derived is recomputed at the start of each step.
   if (prm_.cuda) {
-    dev_ = make_cuda_backend(prm_, grid_.geometry(), kernel_, P_);
-    dev_->upload(P_);
+    device_ = make_cuda_backend(prm_, cpu_->grid().geometry(), kernel_, P_);
+    device_->upload(P_);
+    backend_ = device_.get();
   }
 }
 
 Solver::~Solver() = default;
-Solver::Solver(Solver&&) noexcept = default;
-Solver& Solver::operator=(Solver&&) noexcept = default;
+
+void Solver::sync_host() const {
+  if (host_current_) return;
+  backend_->download(P_);
+  host_current_ = true;
+}
+
+void Solver::sync_device() {
+  if (device_current_) return;
+  backend_->upload(P_);
+  device_current_ = true;
+}
 
 const Particles& Solver::particles() const {
-  if (!host_current_) {
-    dev_->download(P_);
-    host_current_ = true;
-  }
+  sync_host();
   return P_;
 }
 
 Particles& Solver::particles() {
-  const Particles& p = std::as_const(*this).particles();
-  (void)p;
+  sync_host();
   device_current_ = false;
   return P_;
+}
+
+void Solver::refresh_geometry() {
+  backend_->refresh_geometry(counters_, times_);
+  host_current_ = backend_->on_host();
+}
+
+void Solver::boundary_pressure() {
+  PhaseTimer timer(times_.wall_pressure);
+  if (P_.n_boundary == 0) return;
+  backend_->boundary_pressure(prm_.wall_pressure_sweeps, stage_params(dt_), counters_);
 }
 
 StageParams Solver::stage_params(real dt) const {
@@ -98,23 +112,16 @@ HealthLimits Solver::health_limits() const {
   l.domain = domain_;
   return l;
 }
-real Solver::max_speed() const {
-  if (dev_) return dev_->max_speed();
-  real vmax2 = 0;
-  const std::size_t n = P_.size();
-#pragma omp parallel for schedule(static) reduction(max : vmax2)
-  for (std::size_t i = 0; i < n; ++i) vmax2 = std::max(vmax2, norm2(P_.v[i]));
-  return std::sqrt(vmax2);
-}
 
 real Solver::stable_dt() const {
-  const real dlist = dev_ ? dev_->min_distance() : nl_.min_distance;
+  const real dlist = backend_->min_distance();
   const real dmin = dlist > 0 && std::isfinite(dlist) ? dlist : prm_.d0;
-  const real vmax = max_speed();
+  const real vmax = backend_->max_speed();
   real dt = prm_.cfl * dmin / (prm_.c + vmax);                           // P.30: Courant condition
   if (prm_.nu > 0) dt = std::min(dt, prm_.cfl * dmin * dmin / prm_.nu);  // P.31: viscous diffusion
   if (prm_.dt_max > 0) dt = std::min(dt, prm_.dt_max);
-  if (contact_dt_ > 0) dt = std::min(dt, contact_dt_);  // t_c / 20 of the contacts (collisions())
+  const real contact_dt = contacts_.dt_limit();
+  if (contact_dt > 0) dt = std::min(dt, contact_dt);  // t_c / 20 of the contacts
   return std::min(dt, body_force_dt());
 }
 
@@ -137,10 +144,10 @@ std::optional<Failure> Solver::time_step_collapse(real dt) const {
   dt_scale = std::min(dt_scale, body_force_dt());
   if (!(dt < kTimeStepCollapse * dt_scale)) return std::nullopt;
   // Name the limit that collapsed: the closest particle pair, the fastest particle or a contact.
-  const real dlist = dev_ ? dev_->min_distance() : nl_.min_distance;
-  const real vmax = max_speed();
+  const real dlist = backend_->min_distance();
+  const real vmax = backend_->max_speed();
   std::string why;
-  if (contact_dt_ > 0 && contact_dt_ <= dt)
+  if (contacts_.dt_limit() > 0 && contacts_.dt_limit() <= dt)
     why =
         "the stability limit of a contact (t_c / 20): a contact too stiff for its bodies' masses "
         "(collision.*)";
@@ -166,34 +173,10 @@ std::optional<Failure> Solver::step_to(real t_target) {
 }
 
 std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
-  if (dev_ && !device_current_) {
-    dev_->upload(P_);
-    device_current_ = true;
-  }
-  const bool reordered = prm_.reorder_interval > 0 && steps_ % prm_.reorder_interval == 0;
-  if (reordered) {
-    PhaseTimer timer(times_.neighbors);
-    if (dev_)
-      dev_->reorder_fluid();
-    else
-      reorder_fluid();
-  }
-  if (dev_) {
-    PhaseTimer timer(times_.geometry);
-    dev_->refresh_geometry(counters_);
-    host_current_ = false;
-  } else {
-    refresh_geometry();
-  }
-  open_ghost_weights();
-  open_min_distance();
-  if (prm_.momentum_force) {
-    PhaseTimer timer(times_.bodies);
-    update_load_band(reordered);
-  }
+  prepare_step();
   {
     PhaseTimer timer(times_.bodies);
-    if (auto f = collisions()) return f;
+    if (auto f = contacts_.find(prm_, domain_, groups_)) return f;
   }
   {
     PhaseTimer timer(times_.integration);
@@ -207,74 +190,80 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   const real t_new = dt_cap > 0 && dt == dt_cap && std::isfinite(land_at) ? land_at : t_ + dt;
   {
     PhaseTimer timer(times_.bodies);
-    contact_forces(dt);
+    contacts_.apply(prm_, domain_, groups_, dt);
   }
   const StageParams sp = stage_params(dt);
   open_velocities(t_ + 0.5 * dt);
   open_pressures();
+  // predictor: V* = V^n + dt A(V^n, P^n); bodies from the loads of P^n, tau^n;
+  // rho* = rho^n + dt D(V*, P^n) (continuity uses the new velocity)
+  stage(StageStart::StepStart, sp, t_new);
+  // corrector: V** = V* + dt A(V*, P*); bodies likewise; rho** = rho* + dt D(V**, P*)
+  stage(StageStart::Predicted, sp, t_new);
+  update(dt, t_new);
+  return finish_step();
+}
 
-  save_stage_start(StageStart::StepStart);
-  std::vector<Vec2>& gv0 = group_v0_;
-  std::vector<real>& gw0 = group_w0_;
-  gv0.resize(groups_.size());
-  gw0.resize(groups_.size());
-  for (std::size_t k = 0; k < groups_.size(); ++k) {
-    groups_[k].vel_n = gv0[k] = groups_[k].vel;
-    groups_[k].omega_n = gw0[k] = groups_[k].omega;
+void Solver::prepare_step() {
+  sync_device();
+  const bool reordered = prm_.reorder_interval > 0 && steps_ % prm_.reorder_interval == 0;
+  if (reordered) {
+    PhaseTimer timer(times_.neighbors);
+    backend_->reorder_fluid();
   }
-  // Bodies advance one stage from the loads of the current P, tau; their surface particles then
-  // carry the stage's velocity and acceleration (positions stay frozen during the stages).
-  auto bodies_stage = [&] {
+  refresh_geometry();
+  open_ghost_weights();
+  // buffer particles are not integrated: the time step does not see their pairs
+  if (!prm_.open.empty()) backend_->skip_buffer_pairs_in_min_distance();
+  if (prm_.momentum_force) {
+    PhaseTimer timer(times_.bodies);
+    band_.update(band_scene(), cpu_->grid(), kernel_, cpu_->neighbors(), reordered);
+  }
+}
+
+void Solver::stage(StageStart from, const StageParams& sp, real t_new) {
+  backend_->save_stage_start(from);
+  group_v0_.resize(groups_.size());
+  group_w0_.resize(groups_.size());
+  for (std::size_t k = 0; k < groups_.size(); ++k) {
+    RigidGroup& g = groups_[k];
+    group_v0_[k] = g.vel;
+    group_w0_[k] = g.omega;
+    if (from == StageStart::StepStart) {
+      g.vel_n = g.vel;
+      g.omega_n = g.omega;
+    }
+  }
+  {
+    PhaseTimer timer(times_.operators);
+    if (from == StageStart::StepStart)
+      backend_->start_of_step_derivatives();  // grad V, lap V and grad P / rho of the step start
+    else
+      backend_->pressure_gradient();  // grad P* / rho* (the velocity's derivatives are those of V*)
+    backend_->rhie_chow_and_momentum(from, sp);
+  }
+  {
+    // Bodies advance one stage from the loads of the current P, tau; their surface particles then
+    // carry the stage's velocity and acceleration (positions stay frozen during the stages).
     PhaseTimer timer(times_.bodies);
     group_loads();
-    body_stage(dt, t_new, gv0, gw0);
+    body_stage(sp.dt, t_new, group_v0_, group_w0_);
     set_boundary_kinematics();
-  };
-
-  // ---- predictor: V* = V^n + dt A(V^n, P^n); bodies from the loads of P^n, tau^n;
-  //      rho* = rho^n + dt D(V*, P^n) (continuity uses the new velocity)
-  {
-    PhaseTimer timer(times_.operators);
-    if (dev_) {
-      dev_->start_of_step_derivatives();
-    } else {
-      derivatives_sweep(P_.v, &G_);
-      gradV_n_ = gradV_;
-    }
-    rhie_chow_and_momentum(StageStart::StepStart, sp);
   }
-  bodies_stage();
   {
     PhaseTimer timer(times_.operators);
-    derivatives_and_continuity(StageStart::StepStart, sp);
+    backend_->derivatives_and_continuity(from, sp);
   }
   open_pressures();
   boundary_pressure();
+}
 
-  // ---- corrector: V** = V* + dt A(V*, P*); bodies likewise; rho** = rho* + dt D(V**, P*)
-  save_stage_start(StageStart::Predicted);
-  for (std::size_t k = 0; k < groups_.size(); ++k) {
-    gv0[k] = groups_[k].vel;
-    gw0[k] = groups_[k].omega;
-  }
-  {
-    PhaseTimer timer(times_.operators);
-    pressure_gradient();
-    rhie_chow_and_momentum(StageStart::Predicted, sp);
-  }
-  bodies_stage();
-  {
-    PhaseTimer timer(times_.operators);
-    derivatives_and_continuity(StageStart::Predicted, sp);
-  }
-  open_pressures();
-  boundary_pressure();
-
-  // ---- update (P.28, P.32): averages of the stage-start and corrected values
+void Solver::update(real dt, real t_new) {
+  // P.28, P.32: averages of the stage-start and corrected values
   real vmax2 = 0;
   {
     PhaseTimer timer(times_.integration);
-    vmax2 = end_of_step(dt);
+    vmax2 = backend_->end_of_step(dt, prm_.single_layer);
     open_move(dt);
   }
   if (!prm_.single_layer) boundary_pressure();  // dummies copy the averaged surface values
@@ -283,16 +272,19 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   {
     PhaseTimer timer(times_.bodies);
     body_update(dt, t_);
-    place_boundary(t_);
+    place_boundary();
   }
-
-  // ---- particle shifting (P.33-P.36), with the step's geometry and the new fields
+  // particle shifting (P.33-P.36), with the step's geometry and the new fields
   if (prm_.shifting_beta > 0) {
     PhaseTimer timer(times_.shifting);
-    shift_particles(dt, std::sqrt(vmax2));
+    backend_->shift(prm_.shifting_beta * std::sqrt(vmax2) * dt, prm_.c);
   }
+}
+
+std::optional<Failure> Solver::finish_step() {
   PhaseTimer timer(times_.integration);
-  guard_surfaces();
+  const real keep = prm_.surface_guard * prm_.d0;  // the surface guard's keep-out distance
+  if (keep > 0) backend_->guard_surfaces(keep, counters_);
   open_end_of_step();
   return check_health();
 }
@@ -332,20 +324,9 @@ std::optional<Failure> Solver::check_health() const {
   if (auto f = body_at_open_boundary()) return f;
   const HealthLimits lim = health_limits();
   const real lo = lim.rho_lo, hi = lim.rho_hi;
-  std::int64_t worst = std::numeric_limits<std::int64_t>::max();
-  if (dev_) {
-    const std::int64_t id = dev_->unhealthy_id(lim);
-    if (id < 0) return unhealthy_group(groups_);
-    worst = id;
-    particles();  // the host copy names the particle
-  } else {
-    const std::size_t n = P_.size();
-#pragma omp parallel for schedule(static) reduction(min : worst)
-    for (std::size_t i = 0; i < n; ++i)
-      if (particle_unhealthy(P_.kind[i] == Kind::Fluid, P_.x[i], P_.v[i], P_.rho[i], P_.p[i], lim))
-        worst = std::min(worst, P_.id[i]);
-    if (worst == std::numeric_limits<std::int64_t>::max()) return unhealthy_group(groups_);
-  }
+  const std::int64_t worst = backend_->unhealthy_id(lim);
+  if (worst < 0) return unhealthy_group(groups_);
+  sync_host();  // the host copy names the particle
   std::size_t i = 0;
   while (P_.id[i] != worst) ++i;
   Failure f;

@@ -114,12 +114,10 @@ void Solver::open_ghost_weights() {
   ghost_val_.clear();
   ghost_lin_.clear();
   if (prm_.open.empty()) return;
-  if (dev_) {
-    // The open-boundary passes run on the host (docs/method-notes.md, "Open boundaries"): the
-    // step's state, binned like the device's list (the same stable order by cell).
-    dev_->download(P_);
-    grid_.bin(P_.x);
-  }
+  // The open-boundary passes run on the host (docs/method.md, "Open boundaries"): the step's
+  // state, binned like the backend's list (the same stable order by cell).
+  sync_host();
+  const CellGrid& grid = backend_->host_grid(P_);
   const std::size_t n = P_.size(), nb = P_.n_boundary;
   for (std::size_t i = nb; i < n; ++i)
     if (is_buffer(P_.kind[i])) {
@@ -128,9 +126,9 @@ void Solver::open_ghost_weights() {
     }
   // The grid was binned with this step's positions by the neighbour search; the ghost point's
   // candidates are the particles of the 3x3 cells round it, in the grid's fixed order.
-  const GridGeometry& g = grid_.geometry();
-  const std::uint32_t* sorted = grid_.sorted().data();
-  const std::uint32_t* cell_start = grid_.cell_start().data();
+  const GridGeometry& g = grid.geometry();
+  const std::uint32_t* sorted = grid.sorted().data();
+  const std::uint32_t* cell_start = grid.cell_start().data();
   const real h = prm_.h, h2 = h * h;
   std::vector<std::uint32_t>& js = fit_j_;
   std::vector<Vec2>& d = fit_d_;
@@ -180,22 +178,6 @@ void Solver::open_ghost_weights() {
   }
 }
 
-void Solver::open_min_distance() {
-  if (prm_.open.empty() || dev_) return;
-  const std::size_t n = P_.size();
-  real dmin2 = std::numeric_limits<real>::infinity();
-#pragma omp parallel for schedule(static) reduction(min : dmin2)
-  for (std::size_t i = 0; i < n; ++i) {
-    const bool buffer_i = is_buffer(P_.kind[i]);
-    for (std::uint32_t k = nl_.start[i]; k < nl_.start[i + 1]; ++k) {
-      const std::uint32_t j = nl_.j[k];
-      if (buffer_i && is_buffer(P_.kind[j])) continue;
-      dmin2 = std::min(dmin2, norm2(domain_.separation(P_.x[i], P_.x[j])));
-    }
-  }
-  nl_.min_distance = std::sqrt(dmin2);
-}
-
 void Solver::open_velocities(real t_mid) {
   PhaseTimer timer(times_.wall_pressure);
   for (std::size_t k = 0; k < buffer_.size(); ++k) {
@@ -213,12 +195,12 @@ void Solver::open_velocities(real t_mid) {
       v += ghost_val_[q] * P_.v[ghost_j_[q]];
     P_.v[b] = v;
   }
-  if (dev_) dev_->set_buffer_particles(buffer_, P_);
+  backend_->set_buffer_particles(buffer_, P_);
 }
 
 void Solver::open_pressures() {
   PhaseTimer timer(times_.wall_pressure);
-  if (dev_ && !buffer_.empty()) dev_->download_pressures(P_.p);  // the fluid's stage pressures
+  if (!buffer_.empty()) backend_->download_pressures(P_.p);  // the fluid's stage pressures
   for (std::size_t k = 0; k < buffer_.size(); ++k) {
     if (buffer_zone_[k] < 0 || ghost_start_[k] == ghost_start_[k + 1]) continue;
     const std::size_t b = buffer_[k];
@@ -233,7 +215,7 @@ void Solver::open_pressures() {
     P_.p[b] = z.inlet ? p_lin : outlet_buffer_pressure(z.pressure, p_ghost);
     P_.rho[b] = density_from_pressure(P_.p[b], prm_.rho0, prm_.c, prm_.p0);
   }
-  if (dev_) dev_->set_buffer_particles(buffer_, P_);
+  backend_->set_buffer_particles(buffer_, P_);
 }
 
 void Solver::open_move(real dt) {
@@ -245,32 +227,19 @@ void Solver::open_move(real dt) {
     // crossing the line) its buffer follows it, and open_transfer refills the back.
     P_.x[b] += (dt * dot(P_.v[b], z.n)) * z.n;
   }
-  if (dev_) dev_->set_buffer_particles(buffer_, P_);
+  backend_->set_buffer_particles(buffer_, P_);
 }
 
 void Solver::open_end_of_step() {
   if (prm_.open.empty()) return;
   // On the GPU the transfer and a body's removal change the particle count: the host does them
   // on the whole state and sends it back (one download and one upload a step).
-  if (dev_) dev_->download(P_);
+  sync_host();
   open_transfer();
   remove_bodies_at_outlets();
-  if (dev_) {
-    dev_->upload(P_);
-    host_current_ = true;
-    device_current_ = true;
-  }
-}
-
-void Solver::open_limit_shifting() {
-  if (prm_.open.empty()) return;
-  const std::size_t n = P_.size(), nb = P_.n_boundary;
-  const OpenZone* zones = prm_.open.data();
-  const std::size_t nz = prm_.open.size();
-  const real h = prm_.h;
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = nb; i < n; ++i)
-    if (P_.kind[i] == Kind::Fluid) limit_shift_at_open_lines(zones, nz, P_.x[i], h, shift_dir_[i]);
+  backend_->upload(P_);
+  host_current_ = true;
+  device_current_ = true;
 }
 
 void Solver::open_transfer() {
@@ -372,7 +341,7 @@ void Solver::remove_bodies_at_outlets() {
     if (g.is_wall || g.removed || g.motion == Motion::Fixed) continue;
     const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
     for (std::size_t z = 0; z < prm_.open.size(); ++z) {
-      if (!removes_bodies(z)) continue;
+      if (!removes_bodies(prm_, z)) continue;
       // the body's surface has reached the line where a screen would hold it back
       const Contact c =
           wall_contact_exact(PlacedBody{&b.shape, &b.samples, g.pos, g.angle}, prm_.open_screens[z]);

@@ -1,14 +1,16 @@
-// The GPU side of the solver (`--backend cuda`). The Solver keeps the time loop, the rigid
-// bodies (a few numbers each: forces, ODEs, collisions) and the host copy of the particles for
-// output and checkpoints; a DeviceBackend keeps the particle state on the GPU and runs every
-// per-particle pass there with the same PARTICULA_HD functions as the CPU loops
-// (solver/sweeps.hpp, neighbors/neighbor_list.hpp). Per stage only the group loads (down) and
-// the group poses and velocities (up) cross the bus, a few dozen bytes per body; with
-// numerics.force = momentum also the positions once a step (the load band is built on the
-// host) and the per-entry band loads once a stage (reduced on the host in a fixed order).
+// The particle passes of a step behind one interface, with two implementations: the CPU
+// (OpenMP loops over the host particles, solver/cpu_backend.hpp) and a CUDA device (src/cuda/,
+// `--backend cuda`: the particle state lives on the GPU). Both call the same PARTICULA_HD
+// functions (solver/sweeps.hpp, neighbors/neighbor_list.hpp), so that the Solver's step is the
+// same list of stages whichever runs it. The Solver keeps the time loop, the rigid bodies and the
+// host copy of the particles for output and checkpoints: on a device, per stage only the group
+// loads (down) and the group poses and velocities (up) cross the bus, a few dozen bytes per body;
+// with numerics.force = momentum also the positions once a step (the load band is built on the
+// host) and the per-entry band loads once a stage (reduced on the host in a fixed order). On the
+// CPU the transfers are nothing: the backend works on the host particles themselves.
 //
-// This header is plain C++: the CUDA implementation lives in src/cuda/ and is compiled only
-// when the CUDA toolkit is found (CMake option PARTICULA_CUDA).
+// This header is plain C++: the CUDA implementation is compiled only when the CUDA toolkit is
+// found (CMake option PARTICULA_CUDA).
 #pragma once
 
 #include <cstdint>
@@ -26,6 +28,7 @@ namespace particula {
 
 struct PhysicsParams;
 struct SolverCounters;
+struct PhaseTimes;
 
 /// Which stage-start buffers a stage reads: the predictor starts from the step-start values
 /// (V^n, rho^n), the corrector from the predicted ones (V*, rho*).
@@ -37,18 +40,30 @@ struct GroupLoads {
   real torque = 0;
 };
 
-class DeviceBackend {
+class Backend {
  public:
-  virtual ~DeviceBackend() = default;
+  virtual ~Backend() = default;
+
+  /// "cpu" or "cuda".
+  virtual const char* name() const = 0;
+  /// Whether the particle state the passes work on is the host's own (the CPU): then the
+  /// transfers do nothing and the host evaluates the band's entries as it sums them.
+  virtual bool on_host() const = 0;
 
   /// Whole-state transfers (start, after the host changed the state, output, checkpoints).
   virtual void upload(const Particles& P) = 0;
   virtual void download(Particles& P) = 0;
 
-  /// Stable reorder of the fluid block by cell, as Solver::reorder_fluid.
+  /// Stable reorder of the fluid block by cell (the particles' cells at the last binning).
   virtual void reorder_fluid() = 0;
-  /// Neighbour list, volumes and the geometry sweep (counts guarded events into `cnt`).
-  virtual void refresh_geometry(SolverCounters& cnt) = 0;
+  /// Neighbour list, volumes and the geometry sweep (counts guarded events into `cnt`, times
+  /// the phases into `times`).
+  virtual void refresh_geometry(SolverCounters& cnt, PhaseTimes& times) = 0;
+  /// A host cell grid binned at the step's positions of P (the open boundaries' fits search it).
+  virtual const CellGrid& host_grid(const Particles& P) = 0;
+  /// Leaves the pairs of two buffer particles out of min_distance (open boundaries: they are not
+  /// integrated, and converted outlet particles of different speeds may close up in the buffer).
+  virtual void skip_buffer_pairs_in_min_distance() = 0;
   virtual std::size_t pair_count() const = 0;
   virtual real min_distance() const = 0;
   virtual real max_speed() = 0;
@@ -63,7 +78,8 @@ class DeviceBackend {
   virtual void derivatives_and_continuity(StageStart from, const StageParams& s) = 0;
   virtual void boundary_pressure(int sweeps, const StageParams& s, SolverCounters& cnt) = 0;
 
-  /// Loads of every group (pressure and viscous parts, torque about its position).
+  /// Loads of every group from the surface sum P.26-P.27 (pressure and viscous parts, torque
+  /// about its position).
   virtual void group_loads(const std::vector<RigidGroup>& groups, real mu, std::vector<GroupLoads>& out) = 0;
   /// Positions of every particle (the band of the momentum loads is built from them once a step).
   virtual void download_positions(std::vector<Vec2>& x) = 0;
@@ -88,7 +104,8 @@ class DeviceBackend {
 
   /// End-of-step averages (P.28); returns max |V|^2.
   virtual real end_of_step(real dt, bool single_layer) = 0;
-  /// Mean velocity gradient of the step, new pressure gradient, shift with `scale` = beta V_max dt.
+  /// Mean velocity gradient of the step, new pressure gradient, shift with `scale` = beta V_max dt
+  /// (limited at open boundaries' lines).
   virtual void shift(real scale, real c) = 0;
   /// The surface guard on every fluid particle with keep-out distance `keep` (m); counts into `cnt`.
   virtual void guard_surfaces(real keep, SolverCounters& cnt) = 0;
@@ -101,7 +118,7 @@ bool cuda_backend_available(std::string* why);
 
 /// The CUDA backend for the given physics and grid (throws std::runtime_error when this build
 /// has none or no GPU is present).
-std::unique_ptr<DeviceBackend> make_cuda_backend(const PhysicsParams& prm, const GridGeometry& grid,
+std::unique_ptr<Backend> make_cuda_backend(const PhysicsParams& prm, const GridGeometry& grid,
                                                  const WendlandC2& kernel, const Particles& P);
 
 }  // namespace particula

@@ -1,32 +1,41 @@
-// The CPU passes of a step (docs/architecture.md, data flow): geometry, derivatives, Rhie-Chow
-// and momentum, continuity, the wall pressure P.20, the end-of-step update, shifting, the
-// surface guard and the reordering of the fluid. Each loops over particles and calls the
-// PARTICULA_HD functions of sweeps.hpp (or hands the pass to the GPU backend); the time loop
-// that orders them is in solver.cpp.
+// The CPU backend (solver/cpu_backend.hpp): the passes of a step as OpenMP loops over the host
+// particles. Each loops over particles and calls the PARTICULA_HD functions of sweeps.hpp; the
+// time loop that orders them is Solver::step (solver.cpp, docs/method.md "One time step").
+#include "particula/solver/cpu_backend.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <utility>
 
+#include "particula/boundary/open_boundary.hpp"
 #include "particula/boundary/wall_pressure.hpp"
 #include "particula/fluid/fluid.hpp"
-#include "particula/solver/solver.hpp"
+#include "particula/solver/counters.hpp"
 #include "particula/sph/operators.hpp"
 #include "phase_timer.hpp"
 
 namespace particula {
 
+CpuBackend::CpuBackend(const PhysicsParams& prm, const Domain& domain, const WendlandC2& kernel, Particles& P)
+    : prm_(prm), domain_(domain), kernel_(kernel), P_(P) {
+  real margin = 0;  // the buffers behind open boundaries lie outside the domain
+  for (const OpenZone& z : prm_.open) margin = std::max(margin, z.depth);
+  grid_.setup(domain_, prm_.h, margin);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Geometry: everything that depends on positions (and start-of-step volumes) only.
 
-void Solver::update_volumes() {
+void CpuBackend::update_volumes() {
   const std::size_t n = P_.size();
   vol_.resize(n);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) vol_[i] = P_.m[i] / P_.rho[i];
 }
 
-SweepContext Solver::sweep_context() const {
+SweepContext CpuBackend::sweep_context() const {
   SweepContext c;
   c.domain = domain_;
   c.kernel = kernel_;
@@ -50,21 +59,17 @@ SweepContext Solver::sweep_context() const {
   return c;
 }
 
-void Solver::refresh_geometry() {
-  if (dev_) {
-    dev_->refresh_geometry(counters_);
-    return;
-  }
+void CpuBackend::refresh_geometry(SolverCounters& cnt, PhaseTimes& times) {
   {
-    PhaseTimer timer(times_.neighbors);
+    PhaseTimer timer(times.neighbors);
     build_neighbor_list(P_.x, domain_, kernel_, grid_, nl_);
   }
-  PhaseTimer timer(times_.geometry);
+  PhaseTimer timer(times.geometry);
   update_volumes();
-  geometry_sweep();
+  geometry_sweep(cnt);
 }
 
-void Solver::geometry_sweep() {
+void CpuBackend::geometry_sweep(SolverCounters& cnt) {
   const std::size_t n = P_.size(), nb = P_.n_boundary;
   B_.resize(n);
   Bhat_.resize(n);
@@ -102,11 +107,11 @@ void Solver::geometry_sweep() {
     if (i < nb && kernel_normals && P_.kind[i] == Kind::Boundary && !kernel_normal(g.normal_sum, P_.normal[i]))
       ++bad_normal;
   }
-  counters_.singular_B += bad_B;
-  counters_.singular_Bhat += bad_Bhat;
-  counters_.normal_fallback += bad_normal;
-  counters_.isolated_left_out += lone;
-  counters_.sparse_support += sparse;
+  cnt.singular_B += bad_B;
+  cnt.singular_Bhat += bad_Bhat;
+  cnt.normal_fallback += bad_normal;
+  cnt.isolated_left_out += lone;
+  cnt.sparse_support += sparse;
   // The unresolved-film fractions of this step, from the nearest surfaces and the normals just set.
   film_.resize(n);
   const SweepContext cf = sweep_context();
@@ -118,7 +123,7 @@ void Solver::geometry_sweep() {
 // ---------------------------------------------------------------------------------------------
 // Sweeps over the pair list (solver/sweeps.hpp), fused where the data dependencies allow.
 
-void Solver::derivatives_sweep(const std::vector<Vec2>& v, std::vector<Vec2>* G_out) {
+void CpuBackend::derivatives_sweep(const std::vector<Vec2>& v, std::vector<Vec2>* G_out) {
   const std::size_t n = P_.size();
   gradV_.resize(n);
   lapV_.resize(n);
@@ -136,9 +141,12 @@ void Solver::derivatives_sweep(const std::vector<Vec2>& v, std::vector<Vec2>* G_
   }
 }
 
-void Solver::compute_velocity_derivatives(const std::vector<Vec2>& v) { derivatives_sweep(v, nullptr); }
+void CpuBackend::start_of_step_derivatives() {
+  derivatives_sweep(P_.v, &G_);
+  gradV_n_ = gradV_;
+}
 
-void Solver::compute_pressure_gradient(const std::vector<real>& p, const std::vector<real>& rho) {
+void CpuBackend::compute_pressure_gradient(const std::vector<real>& p, const std::vector<real>& rho) {
   const std::size_t n = P_.size();
   G_.resize(n);
   const SweepContext c = sweep_context();
@@ -146,8 +154,7 @@ void Solver::compute_pressure_gradient(const std::vector<real>& p, const std::ve
   for (std::size_t i = 0; i < n; ++i) G_[i] = pressure_gradient_at(c, i, p.data(), rho.data());
 }
 
-void Solver::rhie_chow_and_momentum(StageStart from, const StageParams& sp) {
-  if (dev_) return dev_->rhie_chow_and_momentum(from, sp);
+void CpuBackend::rhie_chow_and_momentum(StageStart from, const StageParams& sp) {
   const std::size_t n = P_.size();
   rc_.resize(n);
   // the odd-even damping's acceleration, for the band sums of the same stage (its sink, reported
@@ -162,8 +169,7 @@ void Solver::rhie_chow_and_momentum(StageStart from, const StageParams& sp) {
                               v_start, sp, rc_.data(), P_.v.data(), odd_even);
 }
 
-void Solver::derivatives_and_continuity(StageStart from, const StageParams& sp) {
-  if (dev_) return dev_->derivatives_and_continuity(from, sp);
+void CpuBackend::derivatives_and_continuity(StageStart from, const StageParams& sp) {
   const std::size_t n = P_.size();
   gradV_.resize(n);
   lapV_.resize(n);
@@ -179,28 +185,27 @@ void Solver::derivatives_and_continuity(StageStart from, const StageParams& sp) 
 // ---------------------------------------------------------------------------------------------
 // Boundary
 
-void Solver::boundary_pressure() {
-  PhaseTimer timer(times_.wall_pressure);
+void CpuBackend::copy_to_dummies() {
+  // Dummy-particle baseline: surface particles evolve rho by continuity (done by the stages);
+  // dummies copy P and rho of their nearest surface particle.
+  for (std::size_t i = 0; i < P_.n_boundary; ++i)
+    if (P_.kind[i] == Kind::Dummy) {
+      P_.p[i] = P_.p[P_.source[i]];
+      P_.rho[i] = P_.rho[P_.source[i]];
+    }
+}
+
+void CpuBackend::boundary_pressure(int sweeps, const StageParams& sp, SolverCounters& cnt) {
   const std::size_t nb = P_.n_boundary;
   if (nb == 0) return;
-  if (dev_) return dev_->boundary_pressure(prm_.wall_pressure_sweeps, stage_params(dt_), counters_);
-  if (!prm_.single_layer) {
-    // Dummy-particle baseline: surface particles evolve rho by continuity (done by the
-    // stages); dummies copy P and rho of their nearest surface particle.
-    for (std::size_t i = 0; i < nb; ++i)
-      if (P_.kind[i] == Kind::Dummy) {
-        P_.p[i] = P_.p[P_.source[i]];
-        P_.rho[i] = P_.rho[P_.source[i]];
-      }
-    return;
-  }
+  if (!prm_.single_layer) return copy_to_dummies();
   const Vec2 f = prm_.body_force + (prm_.gravity_in_fluid ? prm_.gravity : Vec2{});
   const SweepContext c = sweep_context();
   p_new_.resize(nb);
   const real min_den = wall_pressure_min_den(prm_.rho0, prm_.h);
-  const real void_distance = stage_params(dt_).void_distance;
+  const real void_distance = sp.void_distance;
   std::int64_t kept = 0, extrapolated = 0, far = 0, facing_void = 0;
-  for (int sweep = 0; sweep < prm_.wall_pressure_sweeps; ++sweep) {
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
 #pragma omp parallel for schedule(static) reduction(+ : kept, extrapolated, far, facing_void)
     for (std::size_t i = 0; i < nb; ++i) {
       p_new_[i] = P_.p[i];
@@ -221,11 +226,17 @@ void Solver::boundary_pressure() {
       P_.rho[i] = density_from_pressure(p_new_[i], prm_.rho0, prm_.c, prm_.p0);
     }
   }
-  counters_.wall_pressure_kept += kept;
-  counters_.wall_pressure_extrapolated += extrapolated;
-  counters_.wall_pressure_extrapolated_far += far;
-  counters_.wall_pressure_void += facing_void;
+  cnt.wall_pressure_kept += kept;
+  cnt.wall_pressure_extrapolated += extrapolated;
+  cnt.wall_pressure_extrapolated_far += far;
+  cnt.wall_pressure_void += facing_void;
+  isolated_pressures();
+}
+
+void CpuBackend::isolated_pressures() {
   // Isolated fluid particles take their pressure from the surfaces around them (sweeps.hpp).
+  const std::size_t nb = P_.n_boundary;
+  const SweepContext c = sweep_context();
   const std::size_t n = isolated_.size() == P_.size() ? P_.size() : nb;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = nb; i < n; ++i)
@@ -233,11 +244,16 @@ void Solver::boundary_pressure() {
       P_.rho[i] = density_from_pressure(P_.p[i], prm_.rho0, prm_.c, prm_.p0);
 }
 
+bool CpuBackend::in_open_buffer(Vec2 x) const {
+  for (const OpenZone& z : prm_.open)
+    if (beyond_open_line(z, x)) return true;
+  return false;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Time step
 
-void Solver::save_stage_start(StageStart which) {
-  if (dev_) return dev_->save_stage_start(which);
+void CpuBackend::save_stage_start(StageStart which) {
   if (which == StageStart::StepStart) {
     v_n_ = P_.v;
     rho_n_ = P_.rho;
@@ -248,15 +264,8 @@ void Solver::save_stage_start(StageStart which) {
   }
 }
 
-void Solver::pressure_gradient() {
-  if (dev_) return dev_->pressure_gradient();
-  compute_pressure_gradient(P_.p, P_.rho);
-}
-
-real Solver::end_of_step(real dt) {
-  if (dev_) return dev_->end_of_step(dt, prm_.single_layer);
+real CpuBackend::end_of_step(real dt, bool single_layer) {
   const std::size_t n = P_.size(), nb = P_.n_boundary;
-  const bool single_layer = prm_.single_layer;
   real vmax2 = 0;
 #pragma omp parallel for schedule(static) reduction(max : vmax2)
   for (std::size_t i = 0; i < n; ++i)
@@ -265,9 +274,7 @@ real Solver::end_of_step(real dt) {
   return vmax2;
 }
 
-void Solver::shift_particles(real dt, real vmax) {
-  const real scale = prm_.shifting_beta * vmax * dt;
-  if (dev_) return dev_->shift(scale, prm_.c);
+void CpuBackend::shift(real scale, real c) {
   const std::size_t n = P_.size(), nb = P_.n_boundary;
   // <grad P>/rho of the new pressures with the step's geometry (the stored pair weights), and
   // the step's mean velocity gradient (stage start and end) for the Taylor corrections.
@@ -275,19 +282,27 @@ void Solver::shift_particles(real dt, real vmax) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) gradV_[i] = 0.5 * (gradV_[i] + gradV_n_[i]);
   if (!(scale > 0)) return;
-  open_limit_shifting();
+  limit_shifting_at_open_lines();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = nb; i < n; ++i)
     if (P_.kind[i] == Kind::Fluid)
       shift_particle(shift_dir_[i], scale, gradV_[i], G_[i],
                    gather_surfaces(near_a_[i], near_b_[i], P_.x.data(), P_.normal.data(), P_.v.data()), prm_.d0,
-                   domain_, prm_.c, P_.x[i], P_.v[i], P_.p[i], P_.rho[i]);
+                   domain_, c, P_.x[i], P_.v[i], P_.p[i], P_.rho[i]);
 }
 
-void Solver::guard_surfaces() {
-  const real keep = prm_.surface_guard * prm_.d0;
-  if (!(keep > 0)) return;
-  if (dev_) return dev_->guard_surfaces(keep, counters_);
+void CpuBackend::limit_shifting_at_open_lines() {
+  if (prm_.open.empty()) return;
+  const std::size_t n = P_.size(), nb = P_.n_boundary;
+  const OpenZone* zones = prm_.open.data();
+  const std::size_t nz = prm_.open.size();
+  const real h = prm_.h;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = nb; i < n; ++i)
+    if (P_.kind[i] == Kind::Fluid) limit_shift_at_open_lines(zones, nz, P_.x[i], h, shift_dir_[i]);
+}
+
+void CpuBackend::guard_surfaces(real keep, SolverCounters& cnt) {
   const std::size_t n = P_.size(), nb = P_.n_boundary;
   std::int64_t pushed = 0, gap = 0;
 #pragma omp parallel for schedule(static) reduction(+ : pushed, gap)
@@ -298,11 +313,11 @@ void Solver::guard_surfaces() {
     pushed += o == GuardOutcome::Pushed ? 1 : 0;
     gap += o == GuardOutcome::Gap ? 1 : 0;
   }
-  counters_.surface_pushed += pushed;
-  counters_.gap_squeezed += gap;
+  cnt.surface_pushed += pushed;
+  cnt.gap_squeezed += gap;
 }
 
-void Solver::reorder_fluid() {
+void CpuBackend::reorder_fluid() {
   const std::size_t n = P_.size(), nb = P_.n_boundary;
   if (n == nb) return;
   reorder_key_.resize(n - nb);
@@ -326,6 +341,96 @@ void Solver::reorder_fluid() {
   permute(P_.kind);
   permute(P_.group);
   permute(P_.id);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Speeds, distances, health
+
+real CpuBackend::max_speed() {
+  real vmax2 = 0;
+  const std::size_t n = P_.size();
+#pragma omp parallel for schedule(static) reduction(max : vmax2)
+  for (std::size_t i = 0; i < n; ++i) vmax2 = std::max(vmax2, norm2(P_.v[i]));
+  return std::sqrt(vmax2);
+}
+
+void CpuBackend::skip_buffer_pairs_in_min_distance() {
+  const std::size_t n = P_.size();
+  real dmin2 = std::numeric_limits<real>::infinity();
+#pragma omp parallel for schedule(static) reduction(min : dmin2)
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool buffer_i = is_buffer(P_.kind[i]);
+    for (std::uint32_t k = nl_.start[i]; k < nl_.start[i + 1]; ++k) {
+      const std::uint32_t j = nl_.j[k];
+      if (buffer_i && is_buffer(P_.kind[j])) continue;
+      dmin2 = std::min(dmin2, norm2(domain_.separation(P_.x[i], P_.x[j])));
+    }
+  }
+  nl_.min_distance = std::sqrt(dmin2);
+}
+
+std::int64_t CpuBackend::unhealthy_id(const HealthLimits& lim) {
+  std::int64_t worst = std::numeric_limits<std::int64_t>::max();
+  const std::size_t n = P_.size();
+#pragma omp parallel for schedule(static) reduction(min : worst)
+  for (std::size_t i = 0; i < n; ++i)
+    if (particle_unhealthy(P_.kind[i] == Kind::Fluid, P_.x[i], P_.v[i], P_.rho[i], P_.p[i], lim))
+      worst = std::min(worst, P_.id[i]);
+  return worst == std::numeric_limits<std::int64_t>::max() ? -1 : worst;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Surfaces and loads
+
+void CpuBackend::surface_motion(const std::vector<GroupMotion>& motions, bool place) {
+  const std::size_t nb = P_.n_boundary;
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (P_.group[i] < 0) continue;
+    const GroupMotion& m = motions[static_cast<std::size_t>(P_.group[i])];
+    if (place) {
+      P_.x[i] = surface_position(domain_, m, P_.local[i]);
+      // Analytic normal; replaced by P.18 in the geometry sweep when kernel normals are used.
+      P_.normal[i] = rotate(P_.normal_local[i], m.cos_angle, m.sin_angle);
+    }
+    surface_kinematics(m, P_.local[i], P_.v[i], P_.acc[i]);
+  }
+}
+
+void CpuBackend::group_loads(const std::vector<RigidGroup>& groups, real mu, std::vector<GroupLoads>& out) {
+  out.assign(groups.size(), GroupLoads{});
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    const RigidGroup& g = groups[k];
+    GroupLoads& l = out[k];
+    for (std::size_t i = g.first; i < g.first + g.count; ++i) {
+      if (P_.kind[i] != Kind::Boundary) continue;
+      Vec2 tp, tv;
+      surface_traction(P_.p[i], P_.ds[i], P_.normal[i], gradV_[i], mu, tp, tv);
+      l.force_pressure += tp;
+      l.force_viscous += tv;
+      l.torque += cross(domain_.separation(P_.x[i], g.pos), tp + tv);
+    }
+  }
+}
+
+void CpuBackend::set_load_band(const std::vector<BandEntry>& band) { band_ = band; }
+
+void CpuBackend::band_levels(const LoadArrays& scalars, std::vector<Vec2>& num_den) {
+  num_den.resize(band_.size());
+  for (std::size_t e = 0; e < band_.size(); ++e) band_entry_level(scalars, band_[e], num_den[e].x, num_den[e].y);
+}
+
+void CpuBackend::band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
+                            const std::vector<real>& group_level, std::vector<Vec2>& fp, std::vector<Vec2>& fv,
+                            std::vector<Vec2>& torque, std::vector<Vec2>& fd) {
+  LoadArrays a = scalars;
+  a.group_pos = group_pos.data();
+  a.group_level = group_level.data();
+  const std::size_t ne = band_.size();
+  fp.resize(ne);
+  fv.resize(ne);
+  torque.resize(ne);
+  fd.resize(ne);
+  for (std::size_t e = 0; e < ne; ++e) band_entry_load(a, band_[e], fp[e], fv[e], torque[e], fd[e]);
 }
 
 }  // namespace particula
