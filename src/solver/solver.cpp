@@ -31,8 +31,8 @@ Solver::Solver(PhysicsParams params, Domain domain, Particles particles, std::ve
       t_(t0),
       steps_(step0),
       cpu_(std::make_unique<CpuBackend>(prm_, domain_, kernel_, P_)),
-      backend_(cpu_.get()) {
-  open_flux_.resize(prm_.open.size());
+      backend_(cpu_.get()),
+      open_(prm_.open.size()) {
   if (start == SolverStart::Fresh) {
     place_boundary();
     refresh_geometry();

@@ -1,455 +1,47 @@
-// Open boundaries in the time step (boundary/open_boundary.hpp; docs/method-notes.md, "Open
-// boundaries"): the buffer particles' fields from the fluid's mirrored fit, their motion, and
-// the conversion, deletion and creation of particles where the fluid enters and leaves. CPU
-// only (the CUDA backend refuses cases with open boundaries).
-#include <algorithm>
-#include <cmath>
-#include <limits>
-
-#include "particula/fluid/fluid.hpp"
+// The open boundaries' passes in the step (solver/open_boundaries.hpp): they run on the host
+// state, so on a device the state comes down before the fits and the transfer, and what they set
+// goes back up (docs/architecture.md, "Backends"; on the CPU these transfers do nothing).
 #include "particula/solver/solver.hpp"
 #include "phase_timer.hpp"
 
 namespace particula {
 
-namespace {
-
-/// Coefficients of a linear moving-least-squares fit f(x) ~ a0 + a1 . (x - x_g) over data
-/// points at offsets d_j = (x_j - x_g)/h with weights w_j: the fitted value at offset e is
-/// sum_j c_j f_j with c_j = w_j p(d_j) . M^-1 p(e), p(d) = (1, d.x, d.y), M = sum_j w_j p p^T.
-/// Solves M y = p(e) for the two targets e (the ghost point, 0, and the buffer particle) by a
-/// Cholesky factorisation; false when a pivot loses all but 1e-6 of its diagonal entry (the
-/// points do not determine a plane: too few of them, or all on one line).
-bool linear_fit_targets(const std::vector<Vec2>& d, const std::vector<real>& w, Vec2 e, real y0[3],
-                        real y1[3]) {
-  real M[3][3] = {};
-  for (std::size_t j = 0; j < d.size(); ++j) {
-    const real p[3] = {1, d[j].x, d[j].y};
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c <= r; ++c) M[r][c] += w[j] * p[r] * p[c];
-  }
-  for (int c = 0; c < 3; ++c) {
-    real s = M[c][c];
-    for (int k = 0; k < c; ++k) s -= M[c][k] * M[c][k];
-    if (!(M[c][c] > 0) || !(s > 1e-6 * M[c][c])) return false;
-    M[c][c] = std::sqrt(s);
-    for (int r = c + 1; r < 3; ++r) {
-      real t = M[r][c];
-      for (int k = 0; k < c; ++k) t -= M[r][k] * M[c][k];
-      M[r][c] = t / M[c][c];
-    }
-  }
-  const auto solve = [&](const real rhs[3], real y[3]) {
-    for (int r = 0; r < 3; ++r) {
-      real s = rhs[r];
-      for (int c = 0; c < r; ++c) s -= M[r][c] * y[c];
-      y[r] = s / M[r][r];
-    }
-    for (int r = 2; r >= 0; --r) {
-      real s = y[r];
-      for (int c = r + 1; c < 3; ++c) s -= M[c][r] * y[c];
-      y[r] = s / M[r][r];
-    }
-  };
-  const real at_ghost[3] = {1, 0, 0}, at_particle[3] = {1, e.x, e.y};
-  solve(at_ghost, y0);
-  solve(at_particle, y1);
-  return true;
-}
-
-}  // namespace
-
-int Solver::open_zone_of(Vec2 x, Kind k) const {
-  int best = -1;
-  real best_d = 0;
-  const bool inlet = k == Kind::Inlet;
-  for (std::size_t z = 0; z < prm_.open.size(); ++z) {
-    const OpenZone& oz = prm_.open[z];
-    if (oz.inlet != inlet) continue;
-    const real s = open_along(oz, x), tol = 1e-9 * oz.width;
-    if (s < -tol || s > oz.width + tol) continue;
-    const real d = std::fabs(open_depth(oz, x));
-    if (best < 0 || d < best_d) {
-      best = static_cast<int>(z);
-      best_d = d;
-    }
-  }
-  return best;
-}
-
-real Solver::inlet_speed(std::size_t zone, real s, real t) const {
-  const OpenSpec& o = prm_.open_specs[zone];
-  const real W = prm_.open[zone].width;
-  real u = o.velocity;
-  switch (o.profile) {
-    case InletProfile::Uniform:
-      break;
-    case InletProfile::Parabolic:
-      u = 4 * o.velocity * s * (W - s) / (W * W);
-      break;
-    case InletProfile::Table: {
-      const std::vector<Vec2>& tab = o.table;  // (s, u), s increasing (checked at load)
-      if (s <= tab.front().x) {
-        u = tab.front().y;
-      } else if (s >= tab.back().x) {
-        u = tab.back().y;
-      } else {
-        std::size_t k = 1;
-        while (tab[k].x < s) ++k;
-        const real f = (s - tab[k - 1].x) / (tab[k].x - tab[k - 1].x);
-        u = (1 - f) * tab[k - 1].y + f * tab[k].y;
-      }
-      break;
-    }
-  }
-  return u * inlet_ramp(t, o.ramp_time);
-}
-
 void Solver::open_ghost_weights() {
   PhaseTimer timer(times_.geometry);
-  buffer_.clear();
-  buffer_zone_.clear();
-  ghost_start_.assign(1, 0);
-  ghost_j_.clear();
-  ghost_val_.clear();
-  ghost_lin_.clear();
+  open_.clear();
   if (prm_.open.empty()) return;
-  // The open-boundary passes run on the host (docs/method.md, "Open boundaries"): the step's
-  // state, binned like the backend's list (the same stable order by cell).
   sync_host();
-  const CellGrid& grid = backend_->host_grid(P_);
-  const std::size_t n = P_.size(), nb = P_.n_boundary;
-  for (std::size_t i = nb; i < n; ++i)
-    if (is_buffer(P_.kind[i])) {
-      buffer_.push_back(static_cast<std::uint32_t>(i));
-      buffer_zone_.push_back(open_zone_of(P_.x[i], P_.kind[i]));
-    }
-  // The grid was binned with this step's positions by the neighbour search; the ghost point's
-  // candidates are the particles of the 3x3 cells round it, in the grid's fixed order.
-  const GridGeometry& g = grid.geometry();
-  const std::uint32_t* sorted = grid.sorted().data();
-  const std::uint32_t* cell_start = grid.cell_start().data();
-  const real h = prm_.h, h2 = h * h;
-  std::vector<std::uint32_t>& js = fit_j_;
-  std::vector<Vec2>& d = fit_d_;
-  std::vector<real>& w = fit_w_;
-  for (std::size_t k = 0; k < buffer_.size(); ++k) {
-    const std::size_t b = buffer_[k];
-    js.clear();
-    d.clear();
-    w.clear();
-    if (buffer_zone_[k] >= 0) {
-      const OpenZone& z = prm_.open[static_cast<std::size_t>(buffer_zone_[k])];
-      const Vec2 xg = open_ghost_point(z, P_.x[b]);
-      int first[9], last[9];
-      const int runs = g.neighbor_cell_runs(g.cell_index(xg), first, last);
-      for (int r = 0; r < runs; ++r)
-        for (std::uint32_t s = cell_start[first[r]]; s < cell_start[last[r] + 1]; ++s) {
-          const std::uint32_t j = sorted[s];
-          if (P_.kind[j] != Kind::Fluid) continue;  // the fit reads the fluid only (Tafuni et al. 2018)
-          const Vec2 rj = domain_.separation(P_.x[j], xg);
-          const real r2 = norm2(rj);
-          if (!(r2 < h2)) continue;
-          js.push_back(j);
-          d.push_back(rj / h);
-          w.push_back(P_.m[j] / P_.rho[j] * kernel_.W(std::sqrt(r2)));  // V_j = m_j / rho_j
-        }
-      real y0[3], y1[3];
-      const Vec2 e = (P_.x[b] - xg) / h;
-      if (linear_fit_targets(d, w, e, y0, y1)) {
-        for (std::size_t q = 0; q < js.size(); ++q) {
-          ghost_j_.push_back(js[q]);
-          ghost_val_.push_back(w[q] * (y0[0] + y0[1] * d[q].x + y0[2] * d[q].y));
-          ghost_lin_.push_back(w[q] * (y1[0] + y1[1] * d[q].x + y1[2] * d[q].y));
-        }
-      } else {
-        // Too few fluid particles round the ghost point for a plane: their Shepard mean.
-        ++counters_.open_fit_fallback;
-        real sw = 0;
-        for (const real wq : w) sw += wq;
-        for (std::size_t q = 0; q < js.size() && sw > 0; ++q) {
-          ghost_j_.push_back(js[q]);
-          ghost_val_.push_back(w[q] / sw);
-          ghost_lin_.push_back(w[q] / sw);
-        }
-      }
-    }
-    ghost_start_.push_back(static_cast<std::uint32_t>(ghost_j_.size()));
-  }
+  open_.fit(open_scene(), P_, backend_->host_grid(P_), counters_);
 }
 
 void Solver::open_velocities(real t_mid) {
   PhaseTimer timer(times_.wall_pressure);
-  for (std::size_t k = 0; k < buffer_.size(); ++k) {
-    if (buffer_zone_[k] < 0) continue;
-    const std::size_t b = buffer_[k], zi = static_cast<std::size_t>(buffer_zone_[k]);
-    const OpenZone& z = prm_.open[zi];
-    if (z.inlet) {
-      P_.v[b] = inlet_speed(zi, open_along(z, P_.x[b]), t_mid) * z.n;
-      continue;
-    }
-    // Outlet: the fluid's velocity at the ghost point (an even mirror, dV/dn = 0 at the line).
-    if (ghost_start_[k] == ghost_start_[k + 1]) continue;
-    Vec2 v;
-    for (std::uint32_t q = ghost_start_[k]; q < ghost_start_[k + 1]; ++q)
-      v += ghost_val_[q] * P_.v[ghost_j_[q]];
-    P_.v[b] = v;
-  }
-  backend_->set_buffer_particles(buffer_, P_);
+  open_.set_velocities(open_scene(), P_, t_mid);
+  backend_->set_buffer_particles(open_.buffer(), P_);
 }
 
 void Solver::open_pressures() {
   PhaseTimer timer(times_.wall_pressure);
-  if (!buffer_.empty()) backend_->download_pressures(P_.p);  // the fluid's stage pressures
-  for (std::size_t k = 0; k < buffer_.size(); ++k) {
-    if (buffer_zone_[k] < 0 || ghost_start_[k] == ghost_start_[k + 1]) continue;
-    const std::size_t b = buffer_[k];
-    const OpenZone& z = prm_.open[static_cast<std::size_t>(buffer_zone_[k])];
-    real p_ghost = 0, p_lin = 0;
-    for (std::uint32_t q = ghost_start_[k]; q < ghost_start_[k + 1]; ++q) {
-      const real pj = P_.p[ghost_j_[q]];
-      p_ghost += ghost_val_[q] * pj;
-      p_lin += ghost_lin_[q] * pj;
-    }
-    // Inlet: the fluid's pressure continued linearly to the particle; outlet: the line's pressure.
-    P_.p[b] = z.inlet ? p_lin : outlet_buffer_pressure(z.pressure, p_ghost);
-    P_.rho[b] = density_from_pressure(P_.p[b], prm_.rho0, prm_.c, prm_.p0);
-  }
-  backend_->set_buffer_particles(buffer_, P_);
+  if (!open_.buffer().empty()) backend_->download_pressures(P_.p);  // the fluid's stage pressures
+  open_.set_pressures(open_scene(), P_);
+  backend_->set_buffer_particles(open_.buffer(), P_);
 }
 
 void Solver::open_move(real dt) {
-  for (std::size_t k = 0; k < buffer_.size(); ++k) {
-    if (buffer_zone_[k] < 0) continue;
-    const std::size_t b = buffer_[k];
-    const OpenZone& z = prm_.open[static_cast<std::size_t>(buffer_zone_[k])];
-    // Both ways at an outlet: where the fluid flows back in (a pressure wave's reflection, a vortex
-    // crossing the line) its buffer follows it, and open_transfer refills the back.
-    P_.x[b] += (dt * dot(P_.v[b], z.n)) * z.n;
-  }
-  backend_->set_buffer_particles(buffer_, P_);
+  open_.move(open_scene(), P_, dt);
+  backend_->set_buffer_particles(open_.buffer(), P_);
 }
 
 void Solver::open_end_of_step() {
   if (prm_.open.empty()) return;
-  // On the GPU the transfer and a body's removal change the particle count: the host does them
-  // on the whole state and sends it back (one download and one upload a step).
+  // The transfer and a body's removal change the particle count: done on the whole host state,
+  // which goes back to a device afterwards (one download and one upload a step).
   sync_host();
-  open_transfer();
-  remove_bodies_at_outlets();
+  open_.transfer(open_scene(), P_);
+  open_.remove_bodies_at_outlets(open_scene(), P_, groups_, t_);
   backend_->upload(P_);
   host_current_ = true;
   device_current_ = true;
-}
-
-void Solver::open_transfer() {
-  if (prm_.open.empty()) return;
-  const std::size_t n = P_.size(), nb = P_.n_boundary;
-  std::vector<CreatedParticle>& created = created_;
-  created.clear();
-  std::vector<unsigned char>& keep = keep_;
-  keep.assign(n, 1);
-  for (std::size_t i = nb; i < n; ++i) {
-    const Kind k = P_.kind[i];
-    const Vec2 x = P_.x[i];
-    if (k == Kind::Fluid) {
-      for (std::size_t z = 0; z < prm_.open.size(); ++z) {
-        if (!beyond_open_line(prm_.open[z], x)) continue;
-        OpenFlux& f = open_flux_[z];
-        if (prm_.open[z].inlet) {  // fluid leaving through an inlet: removed and counted
-          keep[i] = 0;
-          f.backflow_mass += P_.m[i];
-          ++f.deleted;
-        } else {  // fluid leaving through an outlet joins its buffer
-          P_.kind[i] = Kind::Outlet;
-          f.mass += P_.m[i];
-        }
-        break;
-      }
-      continue;
-    }
-    if (!is_buffer(k)) continue;
-    const int zi = open_zone_of(x, k);
-    if (zi < 0) {  // cannot happen for a particle that moves along its zone's normal; removed if it does
-      keep[i] = 0;
-      continue;
-    }
-    const OpenZone& z = prm_.open[static_cast<std::size_t>(zi)];
-    OpenFlux& f = open_flux_[static_cast<std::size_t>(zi)];
-    const real xi = open_depth(z, x);
-    if (xi >= 0) {
-      // A buffer particle entered the fluid: it becomes fluid, and a new particle with its fields
-      // and mass takes its place one buffer depth behind, so that a buffer moving in keeps its
-      // particles (an inlet's column keeps its spacing; an outlet's buffer, which the fluid filled
-      // in no order, is refilled at its back with the pattern that left its front). At an outlet
-      // this is fluid flowing back in: counted as its backflow, which the outflow nets against.
-      P_.kind[i] = Kind::Fluid;
-      (k == Kind::Inlet ? f.mass : f.backflow_mass) += P_.m[i];
-      ++f.created;
-      created.push_back({x - z.depth * z.n, P_.v[i], P_.p[i], P_.rho[i], P_.m[i], k});
-    } else if (k == Kind::Outlet && xi < -z.depth) {
-      keep[i] = 0;
-      ++f.deleted;
-    }
-  }
-  // Stable compaction of the fluid block, then the created particles at its end: the order is a
-  // function of the state alone, so a resumed run repeats it exactly.
-  std::size_t to = nb;
-  for (std::size_t i = nb; i < n; ++i) {
-    if (!keep[i]) continue;
-    if (to != i) {
-      P_.x[to] = P_.x[i];
-      P_.v[to] = P_.v[i];
-      P_.rho[to] = P_.rho[i];
-      P_.p[to] = P_.p[i];
-      P_.m[to] = P_.m[i];
-      P_.kind[to] = P_.kind[i];
-      P_.group[to] = P_.group[i];
-      P_.id[to] = P_.id[i];
-    }
-    ++to;
-  }
-  if (to == n && created.empty()) return;
-  P_.resize(to);
-  append_created(created);
-}
-
-void Solver::append_created(const std::vector<CreatedParticle>& created) {
-  std::size_t to = P_.size();
-  P_.resize(to + created.size());
-  for (const CreatedParticle& c : created) {
-    P_.x[to] = c.x;
-    P_.v[to] = c.v;
-    P_.p[to] = c.p;
-    P_.rho[to] = c.rho;
-    P_.m[to] = c.m;
-    P_.kind[to] = c.kind;
-    P_.group[to] = -1;
-    P_.id[to] = P_.next_id++;
-    ++to;
-  }
-}
-
-// ---------------------------------------------------------------------------------------------
-// Bodies removed at outlets (outlet[].bodies = "removed"; docs/method-notes.md, "Screens")
-
-void Solver::remove_bodies_at_outlets() {
-  removed_now_.clear();
-  if (prm_.open.empty()) return;
-  for (std::size_t k = 0; k < groups_.size(); ++k) {
-    const RigidGroup& g = groups_[k];
-    if (g.is_wall || g.removed || g.motion == Motion::Fixed) continue;
-    const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
-    for (std::size_t z = 0; z < prm_.open.size(); ++z) {
-      if (!removes_bodies(prm_, z)) continue;
-      // the body's surface has reached the line where a screen would hold it back
-      const Contact c =
-          wall_contact_exact(PlacedBody{&b.shape, &b.samples, g.pos, g.angle}, prm_.open_screens[z]);
-      if (!(c.gap <= 0)) continue;
-      remove_body(k, z);
-      break;
-    }
-  }
-}
-
-void Solver::remove_body(std::size_t k, std::size_t z) {
-  RigidGroup& g = groups_[k];
-  const BodyParams& b = prm_.bodies[static_cast<std::size_t>(g.body)];
-  const GroupMotion mo = group_motion(g);
-  const std::size_t first = g.first, count = g.count;
-
-  // The pressure in the body's place from its surface particles' P.20 pressures, carried inwards
-  // by the momentum balance of fluid that moves with the body, grad P = rho0 (f - a(x)), and
-  // weighted by inverse squared distance and surface length (every surface particle counts, so
-  // that no point deep inside is left without a value).
-  Vec2 f = prm_.body_force;
-  if (prm_.gravity_in_fluid) f += prm_.gravity;
-  const auto pressure_at = [&](Vec2 x) {
-    real num = 0, den = 0;
-    for (std::size_t i = first; i < first + count; ++i) {
-      if (P_.kind[i] != Kind::Boundary) continue;
-      const Vec2 d = domain_.separation(x, P_.x[i]);
-      const real w = P_.ds[i] / (dot(d, d) + real(1e-4) * prm_.d0 * prm_.d0);
-      num += w * (P_.p[i] + prm_.rho0 * dot(f - P_.acc[i], d));
-      den += w;
-    }
-    return den > 0 ? num / den : prm_.p0;
-  };
-
-  // The fill: the points of the fluid lattice (spacing d0 from the domain's corner) at least d0/2
-  // inside the body, as the scene keeps fluid at least d0/2 outside it; a body too thin for any
-  // gets the points inside it, or one particle at its centroid. Together they carry the fluid of
-  // the body's whole area, so that the fluid fills the region again exactly.
-  std::vector<Vec2> fill;
-  const real R = b.shape.bounding_radius(), d0 = prm_.d0;
-  for (const real depth : {0.5 * d0, 0.0}) {
-    const auto i0 = static_cast<long>(std::floor((g.pos.x - R - domain_.lo.x) / d0));
-    const auto j0 = static_cast<long>(std::floor((g.pos.y - R - domain_.lo.y) / d0));
-    const auto i1 = static_cast<long>(std::ceil((g.pos.x + R - domain_.lo.x) / d0));
-    const auto j1 = static_cast<long>(std::ceil((g.pos.y + R - domain_.lo.y) / d0));
-    for (long j = j0; j <= j1; ++j)
-      for (long i = i0; i <= i1; ++i) {
-        const Vec2 x{domain_.lo.x + (static_cast<real>(i) + 0.5) * d0,
-                     domain_.lo.y + (static_cast<real>(j) + 0.5) * d0};
-        const Vec2 rel = domain_.separation(x, g.pos);
-        if (b.shape.signed_distance(rotate(rel, mo.cos_angle, -mo.sin_angle)) <= -depth)
-          fill.push_back(domain_.wrap(x));
-      }
-    if (!fill.empty()) break;
-  }
-  if (fill.empty()) fill.push_back(g.pos);
-  std::vector<CreatedParticle> made;
-  made.reserve(fill.size());
-  real fill_mass = 0;
-  for (const Vec2 x : fill) {
-    const real p = pressure_at(x);
-    const real rho = density_from_pressure(p, prm_.rho0, prm_.c, prm_.p0);
-    const Vec2 r = domain_.separation(x, g.pos);
-    const real m = rho * b.shape.area() / static_cast<real>(fill.size());
-    made.push_back({x, g.vel + g.omega * Vec2{-r.y, r.x}, p, rho, m, Kind::Fluid});
-    fill_mass += m;
-  }
-
-  // The body's particles leave the boundary block; the later groups and the dummies' sources move
-  // down by `count`.
-  const auto erase = [&](auto& v) {
-    v.erase(v.begin() + static_cast<std::ptrdiff_t>(first),
-            v.begin() + static_cast<std::ptrdiff_t>(first + count));
-  };
-  erase(P_.x);
-  erase(P_.v);
-  erase(P_.rho);
-  erase(P_.p);
-  erase(P_.m);
-  erase(P_.kind);
-  erase(P_.group);
-  erase(P_.id);
-  erase(P_.local);
-  erase(P_.normal_local);
-  erase(P_.ds);
-  erase(P_.acc);
-  erase(P_.normal);
-  erase(P_.source);
-  P_.n_boundary -= count;
-  for (std::int32_t& s : P_.source)
-    if (s >= static_cast<std::int32_t>(first + count)) s -= static_cast<std::int32_t>(count);
-  for (std::size_t q = k + 1; q < groups_.size(); ++q) groups_[q].first -= count;
-  g.count = 0;
-  g.removed = true;
-  g.removed_at = static_cast<std::int32_t>(z);
-  g.removed_time = t_;
-  g.vel = g.acc = g.vel_n = Vec2{};
-  g.omega = g.alpha = g.omega_n = 0;
-  g.force_pressure = g.force_viscous = g.force_collision = g.force_damping = Vec2{};
-  g.torque = g.torque_collision = 0;
-  g.contact_speed = 0;
-
-  // The fill joins the fluid block at its end, with new ids.
-  append_created(made);
-  OpenFlux& fl = open_flux_[z];
-  ++fl.bodies_removed;
-  fl.body_fill_mass += fill_mass;
-  removed_now_.push_back({k, z, made.size(), fill_mass});
 }
 
 }  // namespace particula

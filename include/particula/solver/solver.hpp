@@ -23,6 +23,7 @@
 #include "particula/solver/cpu_backend.hpp"
 #include "particula/solver/failure.hpp"
 #include "particula/solver/load_band.hpp"
+#include "particula/solver/open_boundaries.hpp"
 #include "particula/solver/momentum_loads.hpp"
 #include "particula/solver/particles.hpp"
 #include "particula/solver/physics_params.hpp"
@@ -31,17 +32,6 @@
 #include "particula/sph/kernel.hpp"
 
 namespace particula {
-
-/// What crossed an open boundary (zone) since the start of the run; checkpointed.
-struct OpenFlux {
-  real mass = 0;                    // kg/m: into the fluid at an inlet, out of it at an outlet
-  real backflow_mass = 0;           // kg/m: the other way: fluid that left through an inlet (deleted), or
-                                    // that came back in through an outlet; the net flux is mass - backflow
-  std::int64_t created = 0;         // buffer particles created (behind those that entered the fluid)
-  std::int64_t deleted = 0;         // particles deleted (outlet: past the buffer; inlet: backflow)
-  std::int64_t bodies_removed = 0;  // outlet with bodies = "removed": bodies taken out at its screen
-  real body_fill_mass = 0;          // kg/m: fluid created in their places (it enters the fluid there)
-};
 
 /// A stable time step below this fraction of the case's own (cfl d0 / c, cfl d0^2 / nu) is a
 /// collapse: 1e4 times more steps than the case was sized for.
@@ -98,9 +88,9 @@ class Solver {
   /// Guard counters (checkpoints carry them so a resumed run reports totals).
   void set_counters(const SolverCounters& c) { counters_ = c; }
   /// What crossed each open boundary (inlets, then outlets) since the start of the run.
-  const std::vector<OpenFlux>& open_flux() const { return open_flux_; }
+  const std::vector<OpenFlux>& open_flux() const { return open_.flux(); }
   /// Restores the fluxes of a checkpoint (one per open boundary).
-  void set_open_flux(const std::vector<OpenFlux>& f) { open_flux_ = f; }
+  void set_open_flux(const std::vector<OpenFlux>& f) { open_.set_flux(f); }
   /// Where the kept load band was built (checkpoints carry it); empty while none is kept.
   const LoadBandState& load_band_state() const { return band_.state(); }
   /// Restores a checkpoint's kept band: the next step builds it again from the positions and
@@ -113,14 +103,10 @@ class Solver {
   const std::vector<real>& load_band_limits2() const { return band_.limits2(); }
   const std::vector<std::int32_t>& load_band_anchors() const { return band_.anchors(); }
 
-  /// A body taken out of the run at an outlet in the last step (remove_bodies_at_outlets).
-  struct BodyRemoval {
-    std::size_t group = 0, zone = 0;
-    std::size_t fill_particles = 0;
-    real fill_mass = 0;  // kg/m
-  };
+  /// A body taken out of the run at an outlet.
+  using BodyRemoval = OpenBoundaries::BodyRemoval;
   /// The bodies removed in the last step (empty in most steps), for the run log.
-  const std::vector<BodyRemoval>& removed_in_last_step() const { return removed_now_; }
+  const std::vector<BodyRemoval>& removed_in_last_step() const { return open_.removed_in_last_step(); }
 
   /// Rebuilds neighbours and position-only quantities for the current positions (used before
   /// output and by tests of the operators).
@@ -160,36 +146,24 @@ class Solver {
   /// from the stage-start velocities v0/omega0 of each group.
   void body_stage(real dt, real t_stage_end, const std::vector<Vec2>& v0, const std::vector<real>& omega0);
   void body_update(real dt, real t_new);
-  // ---- open boundaries (solver_open.cpp; boundary/open_boundary.hpp)
-  /// The buffer particles of this step and, for each, the coefficients of the linear MLS fit
-  /// over the fluid round its ghost point (value there, and continued to the particle).
+  // ---- open boundaries (solver_open.cpp): the component's passes on the host state, and the
+  // transfers of what they set
+  OpenScene open_scene() const { return OpenScene{prm_, domain_, kernel_}; }
+  /// The buffer particles of this step and their ghost fits.
   void open_ghost_weights();
-  /// Buffer velocities for the step to t_mid (the middle of the step): the inlet's profile,
-  /// the fluid's fitted velocity at an outlet.
+  /// Buffer velocities for the step to t_mid.
   void open_velocities(real t_mid);
-  /// Buffer pressures and densities from the fluid's current pressure (inlet: continued
-  /// linearly; outlet: mirrored about the line's pressure).
+  /// Buffer pressures from the fluid's current pressure.
   void open_pressures();
-  /// Moves the buffer particles along their zone's normal by dt times their normal velocity.
+  /// Moves the buffer particles along their zone's normal.
   void open_move(real dt);
-  /// Converts, deletes and creates particles at the open boundaries (end of step, index order).
-  void open_transfer();
-  /// The step's last open-boundary work: open_transfer and remove_bodies_at_outlets (on the GPU
-  /// with the whole state on the host, sent back afterwards).
+  /// The step's last open-boundary work: the transfer and the bodies removed at outlets, on the
+  /// host state, sent back to a device afterwards.
   void open_end_of_step();
-  /// The zone of a buffer particle of kind `k` at x: the zone of that kind whose line is nearest.
-  int open_zone_of(Vec2 x, Kind k) const;
-  /// The inlet's inflow speed at distance s along it, at time t.
-  real inlet_speed(std::size_t zone, real s, real t) const;
   std::optional<Failure> check_health() const;
   /// A body whose surface has come within h of an open boundary's line (its screen should have
   /// held it back, or removed it): a failure naming both.
   std::optional<Failure> body_at_open_boundary() const;
-  /// Takes out every body whose surface has reached the screen of an outlet that removes bodies.
-  void remove_bodies_at_outlets();
-  /// Takes body group k out of the run at open boundary z: its particles leave the boundary
-  /// block and fluid particles fill the place it held (docs/method-notes.md, "Screens").
-  void remove_body(std::size_t k, std::size_t z);
   /// What a failure at fluid position x most likely comes from, for the exit-3 message.
   std::string likely_cause(Vec2 x) const;
   /// The flow's Mach number (away from a failure at `failed_at`) and hydrostatic compression where
@@ -229,32 +203,8 @@ class Solver {
   std::vector<GroupLoads> loads_;
   std::vector<GroupMotion> motions_;
   LoadBand band_;      // the band of the momentum loads (solver/load_band.hpp)
-  Contacts contacts_;  // the contacts of the step (solver/contacts.hpp)
-
-
-  // open boundaries: the buffer particles of this step, their zones, and the CSR of their ghost
-  // fits (fluid particle, coefficient of the value at the ghost point, of the value continued to
-  // the buffer particle)
-  std::vector<std::uint32_t> buffer_;
-  std::vector<int> buffer_zone_;
-  std::vector<std::uint32_t> ghost_start_, ghost_j_;
-  std::vector<real> ghost_val_, ghost_lin_;
-  std::vector<OpenFlux> open_flux_;
-  // scratch of the fits and the transfer (kept between steps: the step loop allocates nothing once grown)
-  std::vector<std::uint32_t> fit_j_;
-  std::vector<Vec2> fit_d_;
-  std::vector<real> fit_w_;
-  struct CreatedParticle {
-    Vec2 x, v;
-    real p, rho, m;
-    Kind kind;
-  };
-  std::vector<CreatedParticle> created_;
-  /// Appends `created` at the end of the fluid block, with new ids (Particles::next_id).
-  void append_created(const std::vector<CreatedParticle>& created);
-  std::vector<BodyRemoval> removed_now_;
-  std::vector<unsigned char> keep_;
-
+  Contacts contacts_;      // the contacts of the step (solver/contacts.hpp)
+  OpenBoundaries open_;    // inlets and outlets (solver/open_boundaries.hpp)
 };
 
 }  // namespace particula
