@@ -324,7 +324,7 @@ TEST(Defaults, HeadersWriteNoDefaults) {
     ASSERT_FALSE(source.empty());
     std::vector<std::string> structs;
     EXPECT_EQ(written_defaults_in(source, &structs), std::vector<std::string>{})
-        << "a default is written in the schema (src/case/schema.cpp); members here are `{}`";
+        << "defaults belong in the schema (src/case/schema.cpp); members here are value-initialised, `{}`";
     EXPECT_GE(structs.size(), 3u);
   }
 }
