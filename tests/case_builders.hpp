@@ -8,7 +8,7 @@ namespace particula::cases {
 
 /// Closed box [0,W]x[0,H] with four fixed walls listed counter-clockwise.
 inline Case closed_box(real W, real H, real d0) {
-  Case c;
+  Case c = default_case();
   c.name = "box";
   c.domain_min = {0, 0};
   c.domain_max = {W, H};
@@ -29,7 +29,7 @@ inline Case closed_box(real W, real H, real d0) {
 /// across. The upper plate moves at `v_top` (Couette); `force` drives Poiseuille flow.
 /// Parameters of reference/README.md.
 inline Case startup_channel(int n_across, real v_top, real force) {
-  Case c;
+  Case c = default_case();
   const real L = 1e-3;
   const real d0 = L / n_across;
   c.name = "channel";

@@ -78,7 +78,7 @@ namespace {
 constexpr real kR = 1.25e-3, kL = 4 * kR, kF = 0.25;
 
 Case periodic_array(real d0) {
-  Case c;
+  Case c = default_case();
   c.name = "periodic_array";
   c.domain_min = {0, 0};
   c.domain_max = {kL, kL};

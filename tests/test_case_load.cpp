@@ -92,7 +92,7 @@ struct TempFile {
 
 TEST(CaseLoad, MinimalCaseGetsDefaults) {
   const Case c = load_case_text(kMinimal, kFile);
-  const Case d;  // the defaults declared in case.hpp
+  const Case d = default_case();  // the schema's defaults
   EXPECT_EQ(c.name, "mini");
   EXPECT_EQ(c.description, "");
   EXPECT_EQ(c.source, kFile);

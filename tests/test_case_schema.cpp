@@ -1,5 +1,5 @@
-// The case-file schema is self-consistent, agrees with the defaults in case.hpp, and
-// docs/case-files.md is exactly the reference generated from it.
+// The case-file schema is self-consistent and docs/case-files.md is exactly the reference
+// generated from it (its defaults against Case and PhysicsParams: test_defaults.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -112,43 +112,6 @@ TEST(CaseSchema, DefaultsHaveTheirTypeAndLieInTheirRange) {
     if (s.type == ValueType::Choice) {
       EXPECT_NE(std::find(s.choices.begin(), s.choices.end(), std::get<std::string>(v)), s.choices.end());
     }
-  }
-}
-
-TEST(CaseSchema, DefaultsAgreeWithCaseHpp) {
-  // A default-constructed Case (one element per array) holds the schema's defaults.
-  Case fresh;
-  fresh.walls.resize(1);
-  fresh.probes.resize(1);
-  fresh.bodies.resize(1);
-  fresh.inlets.resize(1);
-  fresh.outlets.resize(1);
-  fresh.bodies[0].motion = BodyMotion::Prescribed;  // so that body[].schedule is used
-  for (const KeySpec& s : case_schema()) {
-    if (s.need != Need::Default || s.default_for) continue;
-    SCOPED_TRACE(s.key);
-    if (s.key == "body[].motion") {
-      EXPECT_EQ(format_toml_value(s.default_value), "\"free\"");
-      EXPECT_EQ(BodySpec{}.motion, BodyMotion::Free);
-      continue;
-    }
-    if (s.key == "body[].holes") {  // a polygon without holes; no holes are not written back
-      Case polygon = fresh;
-      polygon.bodies[0].shape = BodyShape::Polygon;
-      ASSERT_TRUE(s.used_for(polygon, 0));
-      EXPECT_FALSE(s.bind.get(polygon, 0));
-      EXPECT_TRUE(std::get<std::vector<std::vector<Vec2>>>(s.default_value).empty());
-      continue;
-    }
-    ASSERT_TRUE(s.used_for(fresh, 0));
-    const std::optional<Value> v = s.bind.get(fresh, 0);
-    if (s.key == "body[].schedule") {  // an empty schedule is not written back
-      EXPECT_FALSE(v);
-      EXPECT_TRUE(std::get<std::vector<Real4>>(s.default_value).empty());
-      continue;
-    }
-    ASSERT_TRUE(v);
-    EXPECT_EQ(format_toml_value(*v), format_toml_value(s.default_value));
   }
 }
 

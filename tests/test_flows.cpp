@@ -87,7 +87,7 @@ TEST(Flows, PoiseuilleStartup40) {
 
 TEST(Flows, TaylorGreenDecay) {
   // Periodic unit square, U = 1, rho = 1, Re = 100, c = 10 U, 50 x 50 particles.
-  Case c;
+  Case c = default_case();
   c.name = "tg";
   c.domain_min = {0, 0};
   c.domain_max = {1, 1};

@@ -151,7 +151,7 @@ TEST(MomentumLoads, BandLoadSplitsItsTorqueIntoThePressureAndViscousParts) {
 namespace {
 
 Case box_with_bodies(real d0, ForceModel force) {
-  Case c;
+  Case c = default_case();
   c.name = "box";
   c.domain_min = {0, 0};
   c.domain_max = {8e-3, 8e-3};
@@ -254,7 +254,7 @@ TEST(MomentumLoads, BodiesAtRestInAHydrostaticBoxFeelTheirBuoyancyAndTheSolidsCa
 // flow the walls' torque about the cylinder's centre balances the cylinder's. The band balance
 // holds it to 0.04 % at 10 particles across (the paper's sum: 18 %, its cylinder torque 12 % low).
 TEST(MomentumLoads, TorquesOfACylinderTurningInAClosedBoxBalance) {
-  Case c;
+  Case c = default_case();
   c.name = "turning";
   const real L = 6e-3;
   c.domain_min = {0, 0};

@@ -148,7 +148,7 @@ void read_key(const toml::table& root, const KeySpec& spec, std::size_t index, C
     ctx.given.insert(key);  // a key given where it is not used is reported by the cross checks
     spec.bind.set(c, index, v);
   } else if (!spec.used_for(c, index)) {
-    return;  // e.g. body[].radius of an ellipse: left at the default of case.hpp
+    return;  // e.g. body[].radius of an ellipse: left value-initialised
   } else if (spec.need == Need::Required) {
     const std::string unit = spec.unit.empty() || spec.unit == "-" ? "" : ", " + spec.unit;
     std::string why;

@@ -99,6 +99,7 @@ PhysicsParams physics_params(const Case& c) {
   p.wall_pressure_sweeps = c.wall_pressure_sweeps;
   p.rho_min_ratio = c.rho_min_ratio;
   p.rho_max_ratio = c.rho_max_ratio;
+  p.reorder_interval = kReorderInterval;
   p.collision_model = c.collision_model;
   p.collision_stiffness = c.collision_stiffness;
   p.collision_range = c.collision_range;

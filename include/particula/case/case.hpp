@@ -1,5 +1,7 @@
 // The typed, validated description of a run (SI units). Built from a TOML case file by
-// load_case(); physics code reads only this struct, never the file.
+// load_case(); physics code reads only this struct, never the file. Its members carry no defaults
+// of their own (they are value-initialised): the defaults are the schema's (src/case/schema.cpp),
+// and default_case() is the Case that holds them.
 #pragma once
 
 #include <cmath>
@@ -42,10 +44,10 @@ struct WallSpec {
   std::string name;
   Vec2 from, to;  // segment; for an arc its end points (derived at load)
   Vec2 velocity;  // must be tangential (parallel to to - from)
-  WallShape shape = WallShape::Segment;
+  WallShape shape{};
   Vec2 center{};  // arc
-  real radius = 0, start_angle = 0, end_angle = 0;
-  real omega = 0;  // rigid rotation rate about `pivot` (rad/s, counter-clockwise), from t = 0
+  real radius{}, start_angle{}, end_angle{};
+  real omega{};  // rigid rotation rate about `pivot` (rad/s, counter-clockwise), from t = 0
   Vec2 pivot{};
 
   WallPiece piece() const {
@@ -71,15 +73,15 @@ enum class OutletBodies { Held, Removed };
 
 struct OpenSpec {
   std::string name;
-  OpenKind kind = OpenKind::Inlet;
+  OpenKind kind{};
   Vec2 from, to;
-  InletProfile profile = InletProfile::Uniform;  // inlet
-  real velocity = 0;        // inlet: uniform speed or parabola peak (m/s, into the fluid)
+  InletProfile profile{};   // inlet
+  real velocity{};          // inlet: uniform speed or parabola peak (m/s, into the fluid)
   std::vector<Vec2> table;  // inlet, profile table: (s in m from `from`, speed in m/s)
-  real ramp_time = 0;       // inlet: speed ramped as (1 - cos(pi t / T)) / 2 until T; 0 = none
-  real pressure = 0;        // outlet: P on the line is fluid.p0 + pressure (Pa)
-  OutletBodies bodies = OutletBodies::Held;  // outlet: bodies held at its screen or removed there
-  int layers = 0;                            // rows of buffer particles; 0 = ceil(h / d0) + 1
+  real ramp_time{};         // inlet: speed ramped as (1 - cos(pi t / T)) / 2 until T; 0 = none
+  real pressure{};          // outlet: P on the line is fluid.p0 + pressure (Pa)
+  OutletBodies bodies{};    // outlet: bodies held at its screen or removed there
+  int layers{};             // rows of buffer particles; 0 = ceil(h / d0) + 1
 
   /// Unit tangent (from -> to) and inward normal (its left).
   Vec2 tangent() const { return (to - from) / norm(to - from); }
@@ -99,9 +101,9 @@ enum class ProbeKind { Line, Points };
 struct ProbeSpec {
   std::string name;
   Vec2 from, to;  // kind Line
-  int points = 2;
-  real interval = 0;
-  ProbeKind kind = ProbeKind::Line;
+  int points{};
+  real interval{};
+  ProbeKind kind{};
   std::vector<Vec2> at;  // kind Points
 };
 
@@ -126,30 +128,30 @@ enum class BodyMotion { Free, Fixed, Prescribed };
 
 /// One knot of a prescribed piecewise-linear motion: velocity and angular velocity at time t.
 struct MotionKnot {
-  real t = 0;
+  real t{};
   Vec2 velocity;
-  real omega = 0;
+  real omega{};
 };
 
 /// A rigid body. Its position is its area centroid; `angle` (rad, counter-clockwise) rotates
 /// the body frame to the world frame.
 struct BodySpec {
   std::string name;
-  BodyShape shape = BodyShape::Circle;
-  Vec2 center;      // circle, ellipse: centroid; half_disc: centre of the full disc
-  real radius = 0;  // circle, half_disc
-  Vec2 semi_axes;   // ellipse: (a along the body x axis, b along the body y axis)
+  BodyShape shape{};
+  Vec2 center;     // circle, ellipse: centroid; half_disc: centre of the full disc
+  real radius{};   // circle, half_disc
+  Vec2 semi_axes;  // ellipse: (a along the body x axis, b along the body y axis)
   std::vector<Vec2>
       vertices;  // polygon: vertices in world coordinates at t = 0 (angle applies about the centroid)
   std::vector<std::vector<Vec2>> holes;  // polygon: holes (fluid inside), world coordinates at t = 0
-  real angle = 0;
-  real density = 0;  // kg/m^3 (free bodies)
-  BodyMotion motion = BodyMotion::Free;
+  real angle{};
+  real density{};  // kg/m^3 (free bodies)
+  BodyMotion motion{};
   Vec2 velocity;                     // initial velocity (free) or constant prescribed velocity
-  real omega = 0;                    // initial / constant prescribed angular velocity (rad/s)
+  real omega{};                      // initial / constant prescribed angular velocity (rad/s)
   std::vector<MotionKnot> schedule;  // prescribed: piecewise-linear in time (overrides velocity/omega)
   Vec2 reference_velocity;           // coefficients.csv: free stream relative to the body (0 = [analysis]'s)
-  real reference_length = 0;         // coefficients.csv: length in the coefficients (0 = [analysis]'s)
+  real reference_length{};           // coefficients.csv: length in the coefficients (0 = [analysis]'s)
 };
 
 struct Case {
@@ -159,74 +161,74 @@ struct Case {
 
   // [domain]
   Vec2 domain_min, domain_max;
-  bool periodic_x = false, periodic_y = false;
+  bool periodic_x{}, periodic_y{};
 
   // [resolution]
-  real d0 = 0;
-  real h_over_d0 = 2.6;
+  real d0{};
+  real h_over_d0{};
 
   // [fluid]
-  real rho0 = 1000;
-  real nu = 0;  // kinematic viscosity; the file gives fluid.nu or fluid.mu (then nu = mu/rho0)
-  real c = 0;   // artificial sound speed
-  real p0 = 0;  // background pressure of the equation of state
+  real rho0{};
+  real nu{};  // kinematic viscosity; the file gives fluid.nu or fluid.mu (then nu = mu/rho0)
+  real c{};   // artificial sound speed
+  real p0{};  // background pressure of the equation of state
   Vec2 gravity;
-  bool gravity_in_fluid = false;
+  bool gravity_in_fluid{};
   Vec2 body_force;  // uniform acceleration on the fluid only (e.g. Poiseuille driving)
 
   // [time]
-  real t_end = 0;
-  real cfl = 0.5;              // alpha of P.29
-  real dt_max = 0;             // 0 = no cap
-  std::int64_t max_steps = 0;  // 0 = unlimited
+  real t_end{};
+  real cfl{};                // alpha of P.29
+  real dt_max{};             // 0 = no cap
+  std::int64_t max_steps{};  // 0 = unlimited
 
   // [numerics]
-  LaplacianScheme laplacian = LaplacianScheme::FatehiManzari;
-  BoundaryModel boundary = BoundaryModel::SingleLayer;
-  NormalModel normals = NormalModel::Analytic;  // P.18 is selectable; see docs/method-notes.md
-  ForceModel force = ForceModel::Momentum;
-  GradientScheme gradient = GradientScheme::Consistent;
-  real rhie_chow_factor = 1;
-  real shifting_beta = 0.05;
-  real odd_even_damping = 0.005;
-  real surface_guard = 0.25;
-  real film_gap = 2.0;
-  real load_band_motion = 0.1;  // d0
-  int wall_pressure_sweeps = 1;
+  LaplacianScheme laplacian{};
+  BoundaryModel boundary{};
+  NormalModel normals{};  // P.18 is selectable; see docs/method-notes.md
+  ForceModel force{};
+  GradientScheme gradient{};
+  real rhie_chow_factor{};
+  real shifting_beta{};
+  real odd_even_damping{};
+  real surface_guard{};
+  real film_gap{};
+  real load_band_motion{};  // d0
+  int wall_pressure_sweeps{};
 
   // [initial]
-  real perturbation = 0.05;  // fraction of d0
-  std::uint64_t seed = 1;
-  InitialFlow initial_flow = InitialFlow::Rest;
-  real initial_amplitude = 1;  // m/s, for taylor_green
-  bool hydrostatic = false;    // start from hydrostatic density when gravity is in the fluid
+  real perturbation{};  // fraction of d0
+  std::uint64_t seed{};
+  InitialFlow initial_flow{};
+  real initial_amplitude{};  // m/s, for taylor_green
+  bool hydrostatic{};        // start from hydrostatic density when gravity is in the fluid
 
   // [output]
-  real output_interval = 0;
-  bool snapshots = true;
-  real snapshot_interval = 0;    // 0 = output_interval
-  real checkpoint_interval = 0;  // 0 = only at the end and on interruption
+  real output_interval{};
+  bool snapshots{};
+  real snapshot_interval{};    // 0 = output_interval
+  real checkpoint_interval{};  // 0 = only at the end and on interruption
 
   // [guard]
-  real rho_min_ratio = 0.5;
-  real rho_max_ratio = 2.0;
+  real rho_min_ratio{};
+  real rho_max_ratio{};
 
   // [validation]
-  ExactSolution exact = ExactSolution::None;
+  ExactSolution exact{};
 
   // [analysis]: references of the dimensionless coefficients (coefficients.csv); 0 = none
   Vec2 reference_velocity;
-  real reference_length = 0;
+  real reference_length{};
 
   // [collision]
-  ContactModel collision_model = ContactModel::SpringDashpot;
-  real collision_stiffness = 0;  // spring_dashpot: k_n (N/m^2), 0 = derived; paper: k of P.38, 0 = off
-  real collision_range = 0;      // contact distance delta_c (m); 0 = 0.5 d0 (spring_dashpot), 3 d0 (paper)
-  real collision_restitution = 0.8;      // e of a dry impact (spring_dashpot)
-  real collision_friction = 0;           // Coulomb coefficient mu (spring_dashpot)
-  real collision_max_overlap = 0.1;      // delta_max / d0 of the derived stiffness
-  bool collision_lubrication = true;     // squeeze-film correction below the resolution
-  real collision_lubrication_range = 0;  // g_range (m); 0 = 2 d0
+  ContactModel collision_model{};
+  real collision_stiffness{};    // spring_dashpot: k_n (N/m^2), 0 = derived; paper: k of P.38, 0 = off
+  real collision_range{};        // contact distance delta_c (m); 0 = 0.5 d0 (spring_dashpot), 3 d0 (paper)
+  real collision_restitution{};  // e of a dry impact (spring_dashpot)
+  real collision_friction{};     // Coulomb coefficient mu (spring_dashpot)
+  real collision_max_overlap{};  // delta_max / d0 of the derived stiffness
+  bool collision_lubrication{};  // squeeze-film correction below the resolution
+  real collision_lubrication_range{};  // g_range (m); 0 = 2 d0
 
   std::vector<WallSpec> walls;
   std::vector<ProbeSpec> probes;
@@ -261,12 +263,17 @@ struct Case {
   }
 };
 
+/// The Case of the schema's defaults: every key that has a default holds it (each row's default
+/// applied through its binding, src/case/default_case.cpp), the required keys are value-initialised
+/// and the arrays empty. Code that builds a Case by hand starts from it.
+Case default_case();
+
 /// The reference of a body's coefficients: its own velocity and length where given, else the
 /// [analysis] ones. `velocity` is the free stream relative to the body: the drag is the force
 /// along it, the lift the force 90 degrees counter-clockwise from it.
 struct BodyReference {
   Vec2 velocity;
-  real length = 0;
+  real length{};
   bool complete() const { return length > 0 && (velocity.x != 0 || velocity.y != 0); }
 };
 

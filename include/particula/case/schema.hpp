@@ -1,10 +1,11 @@
 // The case-file schema: ONE table in code that lists every key a case file may contain, with
 // its type, SI unit, default, allowed range, meaning and how it is stored in `Case`.
 //
-// Everything else is derived from this table: the loader (type, range and required checks,
-// unknown-key detection with suggestions, --set overrides), the resolved case written back to a
-// run directory, the generated reference docs/case-files.md and the JSON Schema for editors
-// (`particula schema --json`, src/case/json_schema.cpp).
+// Everything else is derived from this table: the defaults of a Case (default_case(); Case itself
+// writes none), the loader (type, range and required checks, unknown-key detection with
+// suggestions, --set overrides), the resolved case written back to a run directory, the generated
+// reference docs/case-files.md and the JSON Schema for editors (`particula schema --json`,
+// src/case/json_schema.cpp).
 //
 // Adding a key = one row in src/case/schema.cpp (its binding is the assignment into Case).
 // Adding an array of tables (e.g. [[body]]) = one row in the section table plus its member rows.

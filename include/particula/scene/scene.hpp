@@ -19,6 +19,9 @@ struct Scene {
   real dx = 0, dy = 0;  // actual fluid lattice spacing (d0 adjusted to fit the box exactly)
 };
 
+/// The physics parameters of a case: every member of PhysicsParams set from `c` (the reorder
+/// interval from kReorderInterval; `cuda` is left false for the caller), so that their defaults are
+/// the case's, that is the schema's.
 PhysicsParams physics_params(const Case& c);
 
 /// Whether x lies in the region the walls enclose: on the fluid side (the left) of the nearest

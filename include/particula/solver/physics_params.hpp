@@ -1,5 +1,7 @@
 // What the physics of a run needs, in SI units: the parameters the scene builder derives from a
-// Case (physics never reads the case file).
+// Case (physics never reads the case file). They carry no defaults of their own (value-initialised):
+// physics_params() (src/scene/scene.cpp) sets every one from a Case, whose defaults are the
+// schema's (default_case()).
 #pragma once
 
 #include <string>
@@ -19,61 +21,64 @@ struct BodyParams {
   std::string name;
   Shape shape;
   std::vector<SurfaceSample> samples;  // body frame, used by the contact model
-  BodyMotion motion = BodyMotion::Free;
+  BodyMotion motion{};
   Vec2 velocity;  // prescribed constant velocity (no schedule)
-  real omega = 0;
+  real omega{};
   std::vector<MotionKnot> schedule;  // prescribed piecewise-linear motion
   // A fixed body standing on walls or crossing them (scene: its part beyond the walls left out):
   // the stretches of walls it covers, and the area of its part in the fluid region with that
   // part's centroid (world frame). The smooth pressure's force on it is taken over its wetted
   // surface from these (Solver::smooth_pressure_load). Other bodies: the whole body.
   struct Cover {
-    std::size_t wall = 0;
-    real s0 = 0, s1 = 0;  // fractions along the wall
+    std::size_t wall{};
+    real s0{}, s1{};  // fractions along the wall
   };
   std::vector<Cover> covers;
-  real area_in = 0;
+  real area_in{};
   Vec2 centroid_in;
 };
 
+/// Steps between cell reorderings of the fluid block (a cost setting, not a case key).
+inline constexpr int kReorderInterval = 50;
+
 /// Everything the physics needs, in SI units (filled from a Case by the scene builder).
 struct PhysicsParams {
-  real d0 = 0, h = 0;
-  real rho0 = 1000, nu = 0, c = 0, p0 = 0;
+  real d0{}, h{};
+  real rho0{}, nu{}, c{}, p0{};
   Vec2 gravity;
-  bool gravity_in_fluid = false;
+  bool gravity_in_fluid{};
   Vec2 body_force;
-  real cfl = 0.5;
-  real dt_max = 0;
-  bool fatehi_manzari = true;   // false: Morris Laplacian (baseline)
-  bool zeroth_order_gradient = true;  // numerics.gradient = "consistent" (sweeps.hpp, geometry_at)
-  bool single_layer = true;     // false: dummy-particle boundary (baseline)
-  bool kernel_normals = true;   // false: analytic normals
-  bool momentum_force = false;  // loads from the fluid's momentum balance (true) or P.26-P.27 (false)
-  real rhie_chow_factor = 1;
-  real odd_even_damping = 0.005;  // alpha of the velocity odd-even damping, kappa = alpha c h
-  real shifting_beta = 0.05;
-  real surface_guard = 0.25;  // keep-out distance of fluid from surfaces, in d0 (0: off)
-  real film_gap = 2.0;  // gap below which fluid between two surfaces is an unresolved film, in d0 (0: off)
-  int wall_pressure_sweeps = 1;
-  real rho_min_ratio = 0.5, rho_max_ratio = 2.0;
-  int reorder_interval = 50;  // steps between cell reorderings of the fluid block
+  real cfl{};
+  real dt_max{};
+  bool fatehi_manzari{};         // false: Morris Laplacian (baseline)
+  bool zeroth_order_gradient{};  // numerics.gradient = "consistent" (sweeps.hpp, geometry_at)
+  bool single_layer{};           // false: dummy-particle boundary (baseline)
+  bool kernel_normals{};         // false: analytic normals
+  bool momentum_force{};         // loads from the fluid's momentum balance (true) or P.26-P.27 (false)
+  real rhie_chow_factor{};
+  real odd_even_damping{};  // alpha of the velocity odd-even damping, kappa = alpha c h
+  real shifting_beta{};
+  real surface_guard{};  // keep-out distance of fluid from surfaces, in d0 (0: off)
+  real film_gap{};       // gap below which fluid between two surfaces is an unresolved film, in d0 (0: off)
+  int wall_pressure_sweeps{};
+  real rho_min_ratio{}, rho_max_ratio{};
+  int reorder_interval{};  // steps between cell reorderings of the fluid block (kReorderInterval)
   // numerics.load_band_motion (m): the band of the momentum loads is kept until a solid surface
   // or a particle (relative to its closest solid) has moved this far since it was built, less
   // between two solids close together (0: built every step)
-  real load_band_motion = 0;
+  real load_band_motion{};
   std::vector<BodyParams> bodies;
   std::vector<WallPiece> walls;  // at t = 0 (a turning wall: Solver::wall_now)
   // contacts (bodies/collision.hpp; docs/method-notes.md, Contacts)
-  ContactModel collision_model = ContactModel::SpringDashpot;
-  real collision_stiffness = 0;  // spring_dashpot: k_n (0 = derived); paper: k of P.38
-  real collision_range = 0;      // contact distance delta_c (m); 0 = 0.5 d0 (spring_dashpot), 3 d0 (paper)
-  real collision_restitution = 0.8;
-  real collision_friction = 0;
-  real collision_max_overlap = 0.1;  // delta_max / d0
-  bool collision_lubrication = true;
-  real collision_lubrication_range = 0;  // m; 0 = 2 d0
-  bool cuda = false;                     // particle passes on the GPU (--backend cuda)
+  ContactModel collision_model{};
+  real collision_stiffness{};  // spring_dashpot: k_n (0 = derived); paper: k of P.38
+  real collision_range{};      // contact distance delta_c (m); 0 = 0.5 d0 (spring_dashpot), 3 d0 (paper)
+  real collision_restitution{};
+  real collision_friction{};
+  real collision_max_overlap{};  // delta_max / d0
+  bool collision_lubrication{};
+  real collision_lubrication_range{};  // m; 0 = 2 d0
+  bool cuda{};                         // particle passes on the GPU (--backend cuda)
   // open boundaries (boundary/open_boundary.hpp): inlets then outlets, the zone and its case entry
   std::vector<OpenZone> open;
   std::vector<OpenSpec> open_specs;
