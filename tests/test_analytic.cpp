@@ -1,7 +1,7 @@
 // The exact solutions reproduce the table of reference/README.md.
 #include <gtest/gtest.h>
 
-#include "particula/validation/analytic.hpp"
+#include "particula/analytic/solutions.hpp"
 
 using namespace particula;
 

@@ -6,10 +6,10 @@
 #include <string>
 
 #include "cli_process.hpp"
-#include "particula/io/atomic_file.hpp"
 #include "particula/case/schema.hpp"
-#include "particula/run/validate.hpp"
+#include "particula/io/atomic_file.hpp"
 #include "particula/run/version.hpp"
+#include "particula/validation/validate.hpp"
 
 namespace fs = std::filesystem;
 using cli_test::fresh_dir;

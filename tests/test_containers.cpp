@@ -13,12 +13,12 @@
 #include <utility>
 #include <vector>
 
+#include "particula/analytic/solutions.hpp"
 #include "particula/case/load.hpp"
 #include "particula/geometry/wall_piece.hpp"
 #include "particula/run/observers.hpp"
 #include "particula/scene/scene.hpp"
 #include "particula/solver/solver.hpp"
-#include "particula/validation/analytic.hpp"
 
 using namespace particula;
 

@@ -7,9 +7,9 @@
 #include <cstdio>
 
 #include "case_builders.hpp"
+#include "particula/analytic/solutions.hpp"
 #include "particula/scene/scene.hpp"
 #include "particula/solver/solver.hpp"
-#include "particula/validation/analytic.hpp"
 
 using namespace particula;
 

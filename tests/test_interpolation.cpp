@@ -8,10 +8,10 @@
 #include <cstdio>
 
 #include "case_builders.hpp"
+#include "particula/analytic/solutions.hpp"
 #include "particula/scene/scene.hpp"
 #include "particula/solver/interpolation.hpp"
 #include "particula/solver/solver.hpp"
-#include "particula/validation/analytic.hpp"
 
 using namespace particula;
 

@@ -14,9 +14,9 @@
 
 #include "particula/case/error.hpp"
 #include "particula/case/load.hpp"
-#include "particula/run/random_case.hpp"
 #include "particula/scene/scene.hpp"
 #include "particula/solver/solver.hpp"
+#include "particula/validation/random_case.hpp"
 
 using namespace particula;
 

@@ -20,10 +20,10 @@
 #include "particula/io/csv.hpp"
 #include "particula/io/json.hpp"
 #include "particula/io/vtk.hpp"
-#include "particula/run/robustness.hpp"
 #include "particula/run/runner.hpp"
-#include "particula/run/validate.hpp"
 #include "particula/scene/scene.hpp"
+#include "particula/validation/robustness.hpp"
+#include "particula/validation/validate.hpp"
 
 namespace fs = std::filesystem;
 using namespace particula;

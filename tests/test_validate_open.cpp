@@ -1,4 +1,4 @@
-// The checks of `particula validate` for the open-boundary cases (src/run/validate_open.cpp) on
+// The checks of `particula validate` for the open-boundary cases (src/validation/validate_open.cpp) on
 // fabricated run directories: the DFG 2D-2 check finds the shedding frequency and the maxima of a
 // noisy periodic C_D and C_L, the 2D-1 check averages over the last third, and the mass balance
 // catches a fluid mass that does not follow the fluxes.
@@ -13,8 +13,8 @@
 #include "fabricated_runs.hpp"
 #include "particula/case/load.hpp"
 #include "particula/io/csv.hpp"
-#include "particula/run/validate.hpp"
 #include "particula/scene/scene.hpp"
+#include "particula/validation/validate.hpp"
 
 namespace fs = std::filesystem;
 using namespace particula;

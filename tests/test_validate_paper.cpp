@@ -12,7 +12,7 @@
 #include "fabricated_runs.hpp"
 #include "particula/case/load.hpp"
 #include "particula/io/csv.hpp"
-#include "particula/run/validate.hpp"
+#include "particula/validation/validate.hpp"
 
 namespace fs = std::filesystem;
 using namespace particula;

@@ -9,10 +9,10 @@
 #include "particula/io/error.hpp"
 #include "particula/run/info.hpp"
 #include "particula/run/plots.hpp"
-#include "particula/run/random_case.hpp"
 #include "particula/run/runner.hpp"
-#include "particula/run/validate.hpp"
 #include "particula/run/version.hpp"
+#include "particula/validation/random_case.hpp"
+#include "particula/validation/validate.hpp"
 
 namespace {
 

@@ -10,7 +10,7 @@
 
 #include "particula/io/error.hpp"
 #include "particula/io/vtk.hpp"
-#include "particula/run/robustness.hpp"
+#include "particula/validation/robustness.hpp"
 #include "robustness_support.hpp"
 
 namespace particula {

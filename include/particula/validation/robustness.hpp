@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "particula/case/case.hpp"
-#include "particula/run/validate.hpp"
+#include "particula/validation/validate.hpp"
 
 namespace particula {
 

@@ -5,9 +5,9 @@
 
 #include <cmath>
 
+#include "particula/analytic/solutions.hpp"
 #include "particula/io/csv.hpp"
-#include "particula/run/validate.hpp"
-#include "particula/validation/analytic.hpp"
+#include "particula/validation/validate.hpp"
 
 namespace particula {
 

@@ -1,4 +1,5 @@
-// Exact solutions used for validation (reference/README.md).
+// Exact solutions of the flows that have one: the profile error of a run whose case names one
+// (case key `exact`, run/observers.cpp) and the checks of `particula validate` (reference/README.md).
 #pragma once
 
 #include "particula/core/types.hpp"

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "particula/io/csv.hpp"
-#include "particula/run/validate.hpp"
+#include "particula/validation/validate.hpp"
 
 namespace particula {
 

@@ -1,6 +1,6 @@
 // The validation suite's entries (validation_entries) and the checks of the analytic and paper
 // cases against their references (reference/); running them is validate_run.cpp.
-#include "particula/run/validate.hpp"
+#include "particula/validation/validate.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +11,8 @@
 #include "particula/io/csv.hpp"
 #include "particula/io/json.hpp"
 #include "particula/io/vtk.hpp"
-#include "particula/run/robustness.hpp"
 #include "particula/solver/particles.hpp"
+#include "particula/validation/robustness.hpp"
 
 namespace particula {
 

@@ -8,7 +8,7 @@
 
 #include "particula/io/csv.hpp"
 #include "particula/io/error.hpp"
-#include "particula/run/robustness.hpp"
+#include "particula/validation/robustness.hpp"
 #include "robustness_support.hpp"
 
 namespace particula {

@@ -1,4 +1,4 @@
-#include "particula/validation/analytic.hpp"
+#include "particula/analytic/solutions.hpp"
 
 #include <cmath>
 

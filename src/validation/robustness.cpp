@@ -1,6 +1,6 @@
 // The robustness group's checks that every case shares: no overlap, fluid contained, kinetic
 // energy that decays, bodies touching at rest, the rebound; and the helpers of robustness_support.hpp.
-#include "particula/run/robustness.hpp"
+#include "particula/validation/robustness.hpp"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>

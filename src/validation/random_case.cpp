@@ -1,4 +1,5 @@
-#include "particula/run/random_case.hpp"
+#include "particula/validation/random_case.hpp"
+
 #include "particula/run/runner.hpp"
 
 #include <algorithm>

@@ -15,10 +15,10 @@
 #include "particula/io/csv.hpp"
 #include "particula/io/json.hpp"
 #include "particula/run/limits.hpp"
-#include "particula/run/robustness.hpp"
 #include "particula/run/run_dir.hpp"
 #include "particula/run/runner.hpp"
-#include "particula/run/validate.hpp"
+#include "particula/validation/robustness.hpp"
+#include "particula/validation/validate.hpp"
 
 namespace particula {
 

@@ -1,5 +1,5 @@
 // Helpers shared by the robustness checks: robustness.cpp (the checks every case shares) and
-// robustness_cases.cpp (the case-specific checks and the entries). Internal to src/run.
+// robustness_cases.cpp (the case-specific checks and the entries). Internal to src/validation.
 #pragma once
 
 #include <filesystem>
@@ -11,8 +11,8 @@
 #include "particula/case/case.hpp"
 #include "particula/geometry/shape.hpp"
 #include "particula/io/csv.hpp"
-#include "particula/run/robustness.hpp"
-#include "particula/run/validate.hpp"
+#include "particula/validation/robustness.hpp"
+#include "particula/validation/validate.hpp"
 #include "particula/scene/scene.hpp"
 
 namespace particula::robustness_support {
