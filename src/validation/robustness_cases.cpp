@@ -68,80 +68,86 @@ std::vector<ValidationCheck> check_incline_slide(const fs::path& run_dir, const 
   return out;
 }
 
-std::vector<ValidationCheck> check_channel_cylinder(const fs::path& run_dir, const Case& c, double re_nominal,
-                                                    bool shedding, double window) {
-  const BodyTrack cyl = tracks_or_throw(run_dir, c).at(0);
-  const std::vector<WallTrack> walls = read_wall_tracks(run_dir, c.walls.size());
-  const double t_end = cyl.t.back(), from = t_end * (1 - window);
-  const Shape shape = body_shape(c.bodies.at(0));
-  const double D = 2 * shape.equivalent_radius();
-  const Vec2 span = c.domain_max - c.domain_min;
-  const double area = span.x * span.y - shape.area(), driving = c.rho0 * c.body_force.x * area;
-  // The mean fluid speed along x of a snapshot (the fluid's momentum per mass).
+namespace {
+
+/// The mean fluid velocity along x of snapshot `file` (the fluid's momentum per mass).
+double mean_fluid_speed_x(const fs::path& run_dir, const std::string& file) {
+  const io::VtpData vtp = io::read_vtp(run_dir / file);
+  const auto& v = vtp.array("velocity");
+  const auto& kind = vtp.int_array("kind");
+  double sum = 0;
+  std::size_t nf = 0;
+  for (std::size_t i = 0; i < vtp.num_points; ++i)
+    if (kind.data[i] == static_cast<std::int32_t>(Kind::Fluid)) sum += v.data[3 * i], ++nf;
+  return nf ? sum / static_cast<double>(nf) : 0.0;
+}
+
+/// The mean of y(t) over [t_a, t_b] (trapezoidal rule over the output rows); mean_from(t, y,
+/// from) when the interval is empty.
+double mean_between(const std::vector<double>& t, const std::vector<double>& y, double t_a, double t_b,
+                    double from) {
+  if (!(t_b > t_a)) return mean_from(t, y, from);
+  double integral = 0;
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    const double a = std::max(t[i - 1], t_a), b = std::min(t[i], t_b);
+    if (b <= a) continue;
+    const auto at = [&](double x) { return y[i - 1] + (y[i] - y[i - 1]) * (x - t[i - 1]) / (t[i] - t[i - 1]); };
+    integral += 0.5 * (at(a) + at(b)) * (b - a);
+  }
+  return integral / (t_b - t_a);
+}
+
+/// The x-momentum budget of the channel between the first snapshot of the window and the last.
+struct ChannelBudget {
+  double t_a = 0, t_b = 0;    // the snapshots' times
+  double U = 0;               // mean fluid speed of the last snapshot
+  double drag = 0;            // mean drag on the cylinder
+  double damping_at_cylinder = 0, damping = 0;  // the odd-even damping's sink (cylinder; all surfaces)
+  double momentum_rate = 0;   // d(rho A U)/dt
+  double driving = 0;         // rho f A_fluid
+  double balance = 0;         // (drag + wall shear + damping + momentum rate) / driving
+};
+
+// The mean drag and wall shear (trapezoidal rule over the output rows), plus the momentum the
+// odd-even damping took from the fluid next to the surfaces (the fdx columns: a numerical sink,
+// not a load; solver/momentum_loads.hpp, band_share_damping), plus the rate of change of the
+// fluid's momentum rho A U equal the driving rho f A. Without the momentum change (until session
+// 17) the check failed a flow still developing: 0.938 at Re 100 over 0.42-0.7 s, while the
+// fluid's mean speed went from 0.090 to 0.101 and back to 0.095 m/s. Without the damping's sink
+// (until session 45) it failed the channel at Re 100 at 10 particles across, where kappa = 1.2
+// nu: 0.948, the damping 3 % of the driving (docs/validation.md, "Session 43").
+ChannelBudget channel_budget(const fs::path& run_dir, const Case& c, const BodyTrack& cyl,
+                             const std::vector<WallTrack>& walls, double from, double area) {
+  ChannelBudget b;
+  b.driving = c.rho0 * c.body_force.x * area;
   const io::PvdIndex index = io::PvdIndex::read(run_dir / "particles.pvd");
-  const auto mean_speed = [&](const std::string& file) {
-    const io::VtpData vtp = io::read_vtp(run_dir / file);
-    const auto& v = vtp.array("velocity");
-    const auto& kind = vtp.int_array("kind");
-    double sum = 0;
-    std::size_t nf = 0;
-    for (std::size_t i = 0; i < vtp.num_points; ++i)
-      if (kind.data[i] == static_cast<std::int32_t>(Kind::Fluid)) sum += v.data[3 * i], ++nf;
-    return nf ? sum / static_cast<double>(nf) : 0.0;
-  };
-  const double U = mean_speed(index.entries().back().file), re = U * D / c.nu;
-  // The x-momentum budget between the first snapshot of the window and the last: the mean drag
-  // and wall shear (trapezoidal rule over the output rows), plus the momentum the odd-even
-  // damping took from the fluid next to the surfaces (the fdx columns: a numerical sink, not a
-  // load; solver/momentum_loads.hpp, band_share_damping), plus the rate of change of the fluid's
-  // momentum rho A U equal the driving rho f A. Without the momentum change (until session 17)
-  // the check failed a flow still developing: 0.938 at Re 100 over 0.42-0.7 s, while the fluid's
-  // mean speed went from 0.090 to 0.101 and back to 0.095 m/s. Without the damping's sink (until
-  // session 45) it failed the channel at Re 100 at 10 particles across, where kappa = 1.2 nu:
-  // 0.948, the damping 3 % of the driving (docs/validation.md, "Session 43").
-  double t_a = t_end, u_a = U;
+  b.U = mean_fluid_speed_x(run_dir, index.entries().back().file);
+  b.t_a = cyl.t.back();
+  double u_a = b.U;
   for (const auto& e : index.entries())
     if (e.time >= from - 1e-12) {
-      t_a = e.time;
-      u_a = mean_speed(e.file);
+      b.t_a = e.time;
+      u_a = mean_fluid_speed_x(run_dir, e.file);
       break;
     }
-  const double t_b = index.entries().back().time;
-  const auto mean_between = [&](const std::vector<double>& t, const std::vector<double>& y) {
-    if (!(t_b > t_a)) return mean_from(t, y, from);
-    double integral = 0;
-    for (std::size_t i = 1; i < t.size(); ++i) {
-      const double a = std::max(t[i - 1], t_a), b = std::min(t[i], t_b);
-      if (b <= a) continue;
-      const auto at = [&](double x) { return y[i - 1] + (y[i] - y[i - 1]) * (x - t[i - 1]) / (t[i] - t[i - 1]); };
-      integral += 0.5 * (at(a) + at(b)) * (b - a);
-    }
-    return integral / (t_b - t_a);
-  };
-  const double damping_at_cylinder = mean_between(cyl.t, cyl.fdx);
-  double f_walls = 0, damping = damping_at_cylinder;
-  for (const auto& w : walls) f_walls += mean_between(w.t, w.fx), damping += mean_between(w.t, w.fdx);
-  const double drag = mean_between(cyl.t, cyl.fx);
-  const double momentum_rate = t_b > t_a ? c.rho0 * area * (U - u_a) / (t_b - t_a) : 0.0;
-  const double balance = (drag + f_walls + damping + momentum_rate) / driving;
-  std::vector<ValidationCheck> out;
+  b.t_b = index.entries().back().time;
+  b.damping_at_cylinder = mean_between(cyl.t, cyl.fdx, b.t_a, b.t_b, from);
+  double f_walls = 0;
+  b.damping = b.damping_at_cylinder;
+  for (const auto& w : walls)
+    f_walls += mean_between(w.t, w.fx, b.t_a, b.t_b, from), b.damping += mean_between(w.t, w.fdx, b.t_a, b.t_b, from);
+  b.drag = mean_between(cyl.t, cyl.fx, b.t_a, b.t_b, from);
+  b.momentum_rate = b.t_b > b.t_a ? c.rho0 * area * (b.U - u_a) / (b.t_b - b.t_a) : 0.0;
+  b.balance = (b.drag + f_walls + b.damping + b.momentum_rate) / b.driving;
+  return b;
+}
+
+/// The drag and the lift of the cylinder over the window t >= from: a steady drag (`shedding`
+/// false) or a lift that oscillates (true).
+void add_drag_lift_checks(std::vector<ValidationCheck>& out, const BodyTrack& cyl, double drag, double from,
+                          double D, double U, bool shedding) {
+  const double t_end = cyl.t.back();
   const std::string win = fmt::format("t >= {:.3g} s", from);
-  out.push_back(make_check(
-      fmt::format("(cylinder drag + wall shear + odd-even damping at the surfaces + d(rho A U)/dt) / "
-                  "(rho f A_fluid), {:.3g} to {:.3g} s",
-                  t_a, t_b),
-      balance,
-      fmt::format("{:.4f} (damping {:+.4f}, momentum change {:+.4f})", balance, damping / driving,
-                  momentum_rate / driving),
-      "1 (x momentum balance)", "within 5 %", std::fabs(balance - 1) <= 0.05));
-  out.push_back(report("odd-even damping at the cylinder / its drag (a numerical sink, not in the drag)",
-                       damping_at_cylinder / drag, fmt::format("{:.3g}", damping_at_cylinder / drag)));
-  out.push_back(make_check("Reynolds number U_mean D / nu (last snapshot)", re, fmt::format("{:.3g}", re),
-                           fmt::format("{:g} (nominal)", re_nominal), "within a factor 1.5",
-                           re >= re_nominal / 1.5 && re <= re_nominal * 1.5));
-  out.push_back(report("drag coefficient F / (0.5 rho U^2 D); F / (mu U)", drag,
-                       fmt::format("{:.4g}; {:.4g} (F = {:.3e} N/m)", drag / (0.5 * c.rho0 * U * U * D),
-                                   drag / (c.mu() * U), drag)));
   double fmin = kInf, fmax = -kInf, lift_mean = mean_from(cyl.t, cyl.fy, from);
   double lmin = kInf, lmax = -kInf, t_first = 0, t_last = 0;
   int crossings = 0;
@@ -167,13 +173,46 @@ std::vector<ValidationCheck> check_channel_cylinder(const fs::path& run_dir, con
                              drift, fmt::format("{:.3g}; {:.3g} (max - min: {:.3g})", drift, wobble, (fmax - fmin) / std::fabs(drag)),
                              "0 (steady)", "drift < 2 %, fluctuation < 1 %", drift < 0.02 && wobble < 0.01));
     out.push_back(report("lift amplitude / drag", amplitude, fmt::format("{:.3g}", amplitude)));
-    return out;
+    return;
   }
   const double periods = 0.5 * (crossings - 1), st = periods > 0 ? periods / (t_last - t_first) * D / U : 0;
   out.push_back(
       make_check(fmt::format("lift oscillation over {}: half the peak-to-peak / drag, periods", win),
                  amplitude, fmt::format("{:.3g}, {:.1f} periods (Strouhal {:.3g})", amplitude, periods, st),
                  "periodic shedding", ">= 0.05 and >= 2 periods", amplitude >= 0.05 && periods >= 2));
+}
+
+}  // namespace
+
+std::vector<ValidationCheck> check_channel_cylinder(const fs::path& run_dir, const Case& c, double re_nominal,
+                                                    bool shedding, double window) {
+  const BodyTrack cyl = tracks_or_throw(run_dir, c).at(0);
+  const std::vector<WallTrack> walls = read_wall_tracks(run_dir, c.walls.size());
+  const double from = cyl.t.back() * (1 - window);
+  const Shape shape = body_shape(c.bodies.at(0));
+  const double D = 2 * shape.equivalent_radius();
+  const Vec2 span = c.domain_max - c.domain_min;
+  const double area = span.x * span.y - shape.area();
+  const ChannelBudget b = channel_budget(run_dir, c, cyl, walls, from, area);
+  const double U = b.U, drag = b.drag, re = U * D / c.nu;
+  std::vector<ValidationCheck> out;
+  out.push_back(make_check(
+      fmt::format("(cylinder drag + wall shear + odd-even damping at the surfaces + d(rho A U)/dt) / "
+                  "(rho f A_fluid), {:.3g} to {:.3g} s",
+                  b.t_a, b.t_b),
+      b.balance,
+      fmt::format("{:.4f} (damping {:+.4f}, momentum change {:+.4f})", b.balance, b.damping / b.driving,
+                  b.momentum_rate / b.driving),
+      "1 (x momentum balance)", "within 5 %", std::fabs(b.balance - 1) <= 0.05));
+  out.push_back(report("odd-even damping at the cylinder / its drag (a numerical sink, not in the drag)",
+                       b.damping_at_cylinder / drag, fmt::format("{:.3g}", b.damping_at_cylinder / drag)));
+  out.push_back(make_check("Reynolds number U_mean D / nu (last snapshot)", re, fmt::format("{:.3g}", re),
+                           fmt::format("{:g} (nominal)", re_nominal), "within a factor 1.5",
+                           re >= re_nominal / 1.5 && re <= re_nominal * 1.5));
+  out.push_back(report("drag coefficient F / (0.5 rho U^2 D); F / (mu U)", drag,
+                       fmt::format("{:.4g}; {:.4g} (F = {:.3e} N/m)", drag / (0.5 * c.rho0 * U * U * D),
+                                   drag / (c.mu() * U), drag)));
+  add_drag_lift_checks(out, cyl, drag, from, D, U, shedding);
   return out;
 }
 
