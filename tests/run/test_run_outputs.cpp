@@ -9,7 +9,7 @@
 #include <limits>
 #include <string>
 
-#include "../src/run/outputs.hpp"
+#include "../../src/run/outputs.hpp"
 #include "case_builders.hpp"
 #include "particula/io/csv.hpp"
 #include "particula/run/observers.hpp"

@@ -1,6 +1,6 @@
 // The checks of the robustness group of `particula validate` (issue 14) on fabricated run
 // directories: overlap, gaps, energy decay, resting bodies, rebound, squeeze, viscosity,
-// containment, open-boundary cases and guard counters (tests/test_robustness.cpp runs the group).
+// containment, open-boundary cases and guard counters (tests/validation/test_robustness.cpp runs the group).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 // surface particle's Laplacian (P.20's viscous term), a film particle's Rhie-Chow bracket reads
 // its fluid neighbours only; and the odd-even velocity damping (sweeps.hpp odd_even_velocity_at):
 // zero on linear fields, dissipative on a checkerboard. The long hydrostatic box that the damping
-// makes stable is in tests/test_flows.cpp.
+// makes stable is in tests/fluid/test_flows.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>

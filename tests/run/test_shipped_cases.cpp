@@ -118,6 +118,6 @@ TEST(TwiceTheEndTimeList, EveryShippedCaseIsListed) {
   for (const auto& e : fs::directory_iterator(kCases))
     if (e.path().extension() == ".toml") {
       EXPECT_TRUE(listed.contains(e.path().stem().string()))
-          << e.path() << " is shipped: give it a coarse level in tests/test_shipped_cases.cpp";
+          << e.path() << " is shipped: give it a coarse level in tests/run/test_shipped_cases.cpp";
     }
 }

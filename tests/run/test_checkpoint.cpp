@@ -361,7 +361,7 @@ TEST(CheckpointTampering, EveryEditedIndexCountOrValueIsRefused) {
   ASSERT_EQ(judge(encode_checkpoint(good)), Verdict::Accepted);
   int refused = 0, checked = 0;
   for (const auto& t : tamper::structured()) {
-    if (t.needs_run_directory) continue;  // tests/test_resume.cpp: the identity is checked against the marker
+    if (t.needs_run_directory) continue;  // tests/run/test_resume.cpp: the identity is checked against the marker
     Checkpoint k = good;
     t.apply(k);
     std::string why;

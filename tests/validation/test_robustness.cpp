@@ -1,7 +1,7 @@
 // The robustness group of `particula validate` (issue 14): the shape of the group (case files,
 // levels, default numerics), and (slow, left out under sanitizers) the coarse group itself, one
 // CTest per case so that CTest runs them in parallel. Its checks on fabricated run directories
-// are in tests/test_robustness_checks.cpp.
+// are in tests/validation/test_robustness_checks.cpp.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
