@@ -1,7 +1,8 @@
 // Running the validation suite (`particula validate`): which entries run, each case run into
 // its own directory at the chosen level, the outcome and guard counts read back, the checks
-// applied, the report (report.md, results.json) and the exit code. The entries and their checks
-// are in validate.cpp.
+// applied, the report (report.md) and the exit code; and `validate --check`, the
+// checks of one entry on an existing run directory. The entries and their checks are in
+// validate.cpp.
 #include <omp.h>
 
 #include <algorithm>
@@ -9,6 +10,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fmt/format.h>
+#include <optional>
+#include <stdexcept>
 
 #include "particula/case/load.hpp"
 #include "particula/io/atomic_file.hpp"
@@ -227,28 +230,38 @@ EntryResult run_entry(const ValidationEntry& entry, const ValidateOptions& opt) 
   return r;
 }
 
+/// "  quantity: value (reference ..., tolerance): pass" for each check.
+void print_checks(std::FILE* out, const std::vector<ValidationCheck>& checks) {
+  for (const auto& c : checks)
+    if (c.report_only)
+      std::fprintf(out, "  %s: %s\n", c.quantity.c_str(), c.shown.c_str());
+    else
+      std::fprintf(out, "  %s: %s (reference %s, %s): %s\n", c.quantity.c_str(), c.shown.c_str(),
+                   c.reference.c_str(), c.tolerance.c_str(), c.pass ? "pass" : "FAIL");
+}
+
+/// "  completed after N steps at t = T s; guard events: ..." when the run wrote summary.json.
+void print_outcome(std::FILE* out, const RunOutcome& o) {
+  if (o.steps >= 0)
+    std::fprintf(out, "  %s after %lld steps at t = %g s; guard events: %s\n", o.status.c_str(),
+                 static_cast<long long>(o.steps), o.end_time, guards_text(o).c_str());
+}
+
 void print_result(const EntryResult& r) {
   if (r.exit_code != 0 || !r.error.empty())
     std::fprintf(stderr, "  FAIL: %s%s\n",
                  r.error.empty() ? fmt::format("the run ended with exit code {}", r.exit_code).c_str() : r.error.c_str(),
                  r.outcome.failure.empty() ? "" : (": " + r.outcome.failure).c_str());
-  if (r.outcome.steps >= 0)
-    std::fprintf(stderr, "  %s after %lld steps at t = %g s; guard events: %s\n", r.outcome.status.c_str(),
-                 static_cast<long long>(r.outcome.steps), r.outcome.end_time, guards_text(r.outcome).c_str());
-  for (const auto& c : r.checks)
-    if (c.report_only)
-      std::fprintf(stderr, "  %s: %s\n", c.quantity.c_str(), c.shown.c_str());
-    else
-      std::fprintf(stderr, "  %s: %s (reference %s, %s): %s\n", c.quantity.c_str(), c.shown.c_str(),
-                   c.reference.c_str(), c.tolerance.c_str(), c.pass ? "pass" : "FAIL");
+  print_outcome(stderr, r.outcome);
+  print_checks(stderr, r.checks);
 }
 
 }  // namespace
 
 namespace {
-/// The error for an unknown `--case NAME`: the valid names, by group.
-std::string unknown_case_message(const std::string& name, const std::vector<ValidationEntry>& entries) {
-  std::string text = fmt::format("--case {}: no validation case of that name; the cases are:", name);
+/// "\n  analytic: couette, ...": the names of the validation cases, by group.
+std::string case_names_by_group(const std::vector<ValidationEntry>& entries) {
+  std::string text;
   for (const ValidationGroup g : {ValidationGroup::Analytic, ValidationGroup::Paper, ValidationGroup::Benchmark,
                                   ValidationGroup::Robustness}) {
     std::string names;
@@ -257,6 +270,11 @@ std::string unknown_case_message(const std::string& name, const std::vector<Vali
     if (!names.empty()) text += fmt::format("\n  {}: {}", group_name(g), names);
   }
   return text;
+}
+
+/// The error for an unknown `--case NAME`: the valid names, by group.
+std::string unknown_case_message(const std::string& name, const std::vector<ValidationEntry>& entries) {
+  return fmt::format("--case {}: no validation case of that name; the cases are:", name) + case_names_by_group(entries);
 }
 }  // namespace
 
@@ -304,6 +322,82 @@ int validate_command(const ValidateOptions& opt) {
   std::fprintf(stderr, "validate: %s; report in %s\n", all ? "all cases pass" : "SOME CASES FAIL",
                report.string().c_str());
   return all ? 0 : 3;
+}
+
+// ---- validate --check: the checks of one entry on an existing run directory --------------------
+
+namespace {
+
+/// Bad input of `validate --check` (exit code 2); what() is the message.
+class CheckRefused : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The resolved case of run directory `dir` (its case.toml). Throws CheckRefused when `dir` is
+/// not a run directory.
+Case run_directory_case(const fs::path& dir) {
+  const std::string d = dir.string();
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw CheckRefused(fmt::format("{}: not a run directory ({})", d, fs::exists(dir, ec) ? "not a directory" : "no such directory"));
+  std::optional<RunMarker> marker;
+  try {
+    marker = read_marker(dir);
+  } catch (const io::IoError& e) {
+    throw CheckRefused(fmt::format("{}: not a run directory: {}", d, e.what()));
+  }
+  if (marker && marker->kind == MarkedKind::Validation)
+    throw CheckRefused(fmt::format("{}: a validation directory, not a run directory (its runs are its subdirectories)", d));
+  if (!fs::is_regular_file(dir / "case.toml", ec))
+    throw CheckRefused(fmt::format("{}: not a run directory (no case.toml)", d));
+  try {
+    return load_case(dir / "case.toml");
+  } catch (const std::exception& e) {
+    throw CheckRefused(fmt::format("{}: its case.toml does not load: {}", d, e.what()));
+  }
+}
+
+/// The entry named `name`, or (`name` empty) the one named as the run's case. Throws CheckRefused.
+const ValidationEntry& entry_for_check(const std::vector<ValidationEntry>& entries, const std::string& name,
+                                       const Case& c, const fs::path& dir) {
+  const std::string& wanted = name.empty() ? c.name : name;
+  for (const auto& e : entries)
+    if (e.name == wanted) return e;
+  if (!name.empty()) throw CheckRefused(unknown_case_message(name, entries));
+  throw CheckRefused(fmt::format("{}: its case '{}' is no validation case; name one with --case:", dir.string(),
+                                 c.name) +
+                     case_names_by_group(entries));
+}
+
+}  // namespace
+
+int validate_check_command(const fs::path& run_dir, const std::string& case_name) {
+  const std::vector<ValidationEntry> entries = validation_entries();
+  std::vector<ValidationCheck> checks;
+  try {
+    const Case c = run_directory_case(run_dir);
+    const ValidationEntry& entry = entry_for_check(entries, case_name, c, run_dir);
+    std::printf("validate --check %s: the checks of %s (%s), resolution.d0 = %g m\n", run_dir.string().c_str(),
+                entry.name.c_str(), group_name(entry.group), c.d0);
+    print_outcome(stdout, read_outcome(run_dir));
+    try {
+      checks = entry.evaluate(run_dir, c);
+    } catch (const std::exception& e) {
+      throw CheckRefused(fmt::format("{}: the checks of {} cannot read the run: {}", run_dir.string(), entry.name, e.what()));
+    }
+  } catch (const CheckRefused& e) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+  print_checks(stdout, checks);
+  const auto failed =
+      std::count_if(checks.begin(), checks.end(), [](const ValidationCheck& k) { return !k.pass && !k.report_only; });
+  if (checks.empty()) std::printf("validate --check: FAIL: no checks\n");
+  else if (failed) std::printf("validate --check: %lld of %zu checks FAIL\n", static_cast<long long>(failed), checks.size());
+  else std::printf("validate --check: all checks pass\n");
+  return failed == 0 && !checks.empty() ? 0 : 1;
 }
 
 }  // namespace particula

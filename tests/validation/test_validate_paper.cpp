@@ -184,15 +184,3 @@ TEST(ValidationPaperChecks, TheBenchmarkGroupHasTheDfgCaseWithACoarseQuickLevel)
     }
   }
 }
-
-// Evaluates an existing run directory (manual use: VALIDATE_RUN=dir VALIDATE_CASE=name).
-TEST(ValidationPaperChecks, EvaluateRunDirectoryFromEnvironment) {
-  const char* run = std::getenv("VALIDATE_RUN");
-  const char* name = std::getenv("VALIDATE_CASE");
-  if (!run || !name) GTEST_SKIP() << "set VALIDATE_RUN and VALIDATE_CASE";
-  for (const auto& e : validation_entries())
-    if (e.name == name)
-      for (const auto& k : e.evaluate(run, load_case(fs::path(run) / "case.toml")))
-        std::printf("%s: %s | %s | %s | %s\n", k.quantity.c_str(), k.shown.c_str(), k.reference.c_str(),
-                    k.tolerance.c_str(), k.report_only ? "report" : k.pass ? "pass" : "FAIL");
-}

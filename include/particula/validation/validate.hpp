@@ -142,6 +142,13 @@ bool entry_selected(const ValidationEntry& entry, const ValidateOptions& options
 /// what it wrote, but the case fails.
 int validate_command(const ValidateOptions& options);
 
+/// `particula validate --check DIR [--case NAME]`: the checks of validation entry NAME (default:
+/// the entry named as the run's case, case.toml's `name`) on the existing run directory DIR,
+/// printed to standard output with their values, references, tolerances and verdicts. Exit 0
+/// when every check passes, 1 when one fails, 2 on bad input (DIR not a run directory, an
+/// unknown NAME, a case with no entry, outputs the checks cannot read: the message names DIR).
+int validate_check_command(const std::filesystem::path& run_dir, const std::string& case_name);
+
 /// The source tree the suite reads its case files and references from (cases/, reference/).
 const std::filesystem::path& source_dir();
 
