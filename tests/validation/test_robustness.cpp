@@ -140,18 +140,6 @@ TEST_P(RobustnessCases, CoarseLevelFinishesAndPassesItsChecks) {
   EXPECT_EQ(validate_command(opt), 0) << "see " << (opt.out_dir / "report.md").string();
 }
 
-/// Cases that do not yet finish or pass at the coarse level with the default numerics: open
-/// failures of issue 14, listed with their failure in docs/validation.md. They run (disabled) with
-/// `--gtest_also_run_disabled_tests` and in `particula validate --group robustness`; CI runs the
-/// others. Remove a name here when its case passes. A value above 0 is a short version as for
-/// kLong below: the case up to that time, before its failure, must end with exit 0.
-/// drop_rebound was listed from session 21 (exit 3 at t = 9.2 ms, after the rebound) to session 23,
-/// when the zeroth-order correction of the first derivatives (docs/method-notes.md, "The
-/// self-coupled mode") let it finish and pass; it runs in CI in full again. rotating_drum was
-/// listed from session 14 to session 27, when surfaces facing a void took the void's pressure
-/// (docs/method-notes.md, "Surfaces facing a void"); it finishes and passes, and is long (kLong).
-const std::map<std::string, double> kOpenFailures = {};
-
 /// Cases too long for CI (minutes each on two cores), run in full (with their checks) by
 /// `particula validate --group robustness`: the bodies need most of their end time to come to rest
 /// in a pile or to slide down the slope, the suspensions need 10 and 20 strain units for the
@@ -168,36 +156,21 @@ const std::map<std::string, double> kLong = {
     {"cylinder_channel_re100", 0}, {"fluidized_bed", 0},        {"particle_channel", 0},
     {"rotating_drum", 0}};
 
-enum class Listed { Ci, Open, Long };
-
-std::vector<std::string> robustness_names(Listed which) {
+/// The robustness cases in CI (`long_cases` false) or too long for it (true), in report order.
+std::vector<std::string> robustness_names(bool long_cases) {
   std::vector<std::string> names;
-  for (const auto& e : robustness_entries()) {
-    const Listed is = kLong.count(e.name)           ? Listed::Long
-                      : kOpenFailures.count(e.name) ? Listed::Open
-                                                    : Listed::Ci;
-    if (is == which) names.push_back(e.name);
-  }
+  for (const auto& e : robustness_entries())
+    if ((kLong.count(e.name) > 0) == long_cases) names.push_back(e.name);
   return names;
 }
 
-TEST(RobustnessSuite, OpenFailuresNameRealCases) {
-  std::size_t found = 0;
-  for (const auto& e : robustness_entries()) found += kOpenFailures.count(e.name);
-  EXPECT_EQ(found, kOpenFailures.size());
-}
-
-INSTANTIATE_TEST_SUITE_P(Coarse, RobustnessCases, testing::ValuesIn(robustness_names(Listed::Ci)),
+INSTANTIATE_TEST_SUITE_P(Coarse, RobustnessCases, testing::ValuesIn(robustness_names(false)),
                          [](const testing::TestParamInfo<std::string>& info) { return info.param; });
-INSTANTIATE_TEST_SUITE_P(DISABLED_OpenFailure, RobustnessCases,
-                         testing::ValuesIn(robustness_names(Listed::Open)),
-                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
-INSTANTIATE_TEST_SUITE_P(DISABLED_Long, RobustnessCases, testing::ValuesIn(robustness_names(Listed::Long)),
+INSTANTIATE_TEST_SUITE_P(DISABLED_Long, RobustnessCases, testing::ValuesIn(robustness_names(true)),
                          [](const testing::TestParamInfo<std::string>& info) { return info.param; });
 
-/// The CI version of a long case (kLong) or of an open failure (kOpenFailures): the case file as
-/// `particula validate --quick` runs it, up to the time listed, must end with exit 0 (no numerical
-/// failure).
+/// The CI version of a long case (kLong): the case file as `particula validate --quick` runs it,
+/// up to the time listed, must end with exit 0 (no numerical failure).
 class RobustnessShortVersion : public testing::TestWithParam<std::string> {};
 
 TEST_P(RobustnessShortVersion, RunsWithoutNumericalFailure) {
@@ -211,16 +184,14 @@ TEST_P(RobustnessShortVersion, RunsWithoutNumericalFailure) {
   opt.plots = false;
   opt.threads = 1;
   opt.overrides = e->overrides;
-  const double end = kLong.count(GetParam()) ? kLong.at(GetParam()) : kOpenFailures.at(GetParam());
-  opt.overrides.push_back(fmt::format("time.end={}", end));
+  opt.overrides.push_back(fmt::format("time.end={}", kLong.at(GetParam())));
   EXPECT_EQ(run_command(kSource / e->case_file, opt), 0) << "see " << (opt.out_dir / "log.txt").string();
 }
 
 std::vector<std::string> short_version_names() {
   std::vector<std::string> names;
-  for (const auto* list : {&kLong, &kOpenFailures})
-    for (const auto& [name, end] : *list)
-      if (end > 0) names.push_back(name);
+  for (const auto& [name, end] : kLong)
+    if (end > 0) names.push_back(name);
   return names;
 }
 
