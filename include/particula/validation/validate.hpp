@@ -4,7 +4,9 @@
 // flow past a cylinder, reference/schaefer_turek1996_dfg.csv) and the robustness
 // cases (cases/robustness/, issue 14: untuned cases at default numerics, checked for physical
 // sanity rather than against a published curve); a new benchmark is one more entry in
-// validation_entries().
+// validation_entries(). `particula validate --check DIR` applies one entry's checks to an
+// existing run directory. The validation module builds on the product (src/run and below), which
+// never includes it.
 #pragma once
 
 #include <filesystem>
