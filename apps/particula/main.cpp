@@ -4,15 +4,17 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include "particula/case/schema.hpp"
 #include "particula/io/error.hpp"
 #include "particula/run/info.hpp"
 #include "particula/run/plots.hpp"
-#include "particula/run/random_case.hpp"
 #include "particula/run/runner.hpp"
-#include "particula/run/validate.hpp"
 #include "particula/run/version.hpp"
+#include "particula/validation/random_case.hpp"
+#include "particula/validation/validate.hpp"
 
 namespace {
 
@@ -21,6 +23,170 @@ std::string footer(const std::string& examples) {
   return "Examples:\n" + examples +
          "\nCase files: every key, its unit, default and range in docs/case-files.md; the README lists the "
          "outputs and exit codes.";
+}
+
+// ---- the commands and their options ----------------------------------------------------------
+
+struct RunArgs {
+  particula::RunOptions opt;
+  std::string case_file;
+  bool no_plots = false;
+};
+
+CLI::App* add_run(CLI::App& app, RunArgs& a) {
+  auto* run = app.add_subcommand("run", "Run a case file and write its run directory");
+  run->add_option("case", a.case_file, "Case file (TOML)")->required();
+  run->add_option("--out", a.opt.out_dir, "Run directory (default runs/<case name>)");
+  run->add_option("--set", a.opt.overrides, "Override a case key, e.g. --set resolution.d0=5e-5 (repeatable)");
+  run->add_option("--threads", a.opt.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 4096));
+  run->add_option("--backend", a.opt.backend, "Compute backend: cpu (OpenMP) or cuda (GPU; needs a CUDA build)")
+      ->check(CLI::IsMember({"cpu", "cuda"}));
+  run->add_flag("--quiet", a.opt.quiet, "No progress line");
+  run->add_flag("--no-plots", a.no_plots, "Do not draw plots at the end of the run");
+  run->add_flag("--overwrite", a.opt.overwrite, "Replace an existing run directory");
+  run->footer(footer("  particula run cases/couette.toml\n"
+                     "  particula run cases/falling_cylinder.toml --out runs/demo --set resolution.d0=2.5e-4 "
+                     "--set time.end=0.5"));
+  return run;
+}
+
+struct ResumeArgs {
+  particula::ResumeOptions opt;
+  bool no_plots = false;
+};
+
+CLI::App* add_resume(CLI::App& app, ResumeArgs& a) {
+  auto* resume = app.add_subcommand(
+      "resume", "Continue a run from its checkpoint (DIR/checkpoint/state.bin), appending to its outputs");
+  resume->add_option("dir", a.opt.run_dir, "Run directory")->required();
+  resume->add_option("--set", a.opt.overrides,
+                     "Override time.end or an output.* key, e.g. --set time.end=3 (repeatable)");
+  resume->add_option("--threads", a.opt.threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(1, 4096));
+  resume->add_option("--backend", a.opt.backend, "Compute backend: cpu or cuda")
+      ->check(CLI::IsMember({"cpu", "cuda"}));
+  resume->add_flag("--quiet", a.opt.quiet, "No progress line");
+  resume->add_flag("--no-plots", a.no_plots, "Do not draw plots at the end of the run");
+  resume->footer(footer("  particula resume runs/demo                      (after Ctrl-C or an I/O failure)\n"
+                        "  particula resume runs/demo --set time.end=1     (continue a finished run)"));
+  return resume;
+}
+
+struct InfoArgs {
+  std::string case_file;
+  std::vector<std::string> overrides;
+  bool no_timing = false;
+};
+
+CLI::App* add_info(CLI::App& app, InfoArgs& a) {
+  auto* info = app.add_subcommand("info", "Particle counts, time step, steps, memory and wall-time estimate of a case");
+  info->add_option("case", a.case_file, "Case file (TOML)")->required();
+  info->add_option("--set", a.overrides, "Override a case key (repeatable)");
+  info->add_flag("--no-timing", a.no_timing, "Do not time a few steps (no wall-time estimate)");
+  info->footer(footer("  particula info cases/dkt.toml --set resolution.d0=2e-4"));
+  return info;
+}
+
+struct ValidateArgs {
+  particula::ValidateOptions opt;
+  std::vector<std::string> groups;
+  std::string check_dir;  // --check: evaluate this run directory instead of running the suite
+};
+
+CLI::App* add_validate(CLI::App& app, ValidateArgs& a) {
+  auto* validate = app.add_subcommand(
+      "validate",
+      "Run the validation cases (exact solutions, the paper's five body cases and the DFG benchmark; the robustness "
+      "cases with --group robustness) against their references and write DIR/report.md (exit 3 on a fail); with "
+      "--check, apply one case's checks to an existing run directory (exit 1 on a fail)");
+  auto* quick = validate->add_flag("--quick", a.opt.quick,
+                                   "Analytic and robustness cases at the shipped resolution (else twice as fine); "
+                                   "paper and benchmark cases at a coarse level (else as shipped)");
+  auto* out = validate->add_option("--out", a.opt.out_dir, "Output directory (default runs/validate)");
+  auto* threads = validate->add_option("--threads", a.opt.threads, "OpenMP threads (default: all cores)")
+                      ->check(CLI::Range(1, 4096));
+  auto* sets = validate->add_option("--set", a.opt.sets,
+                                    "Override a case key in every validation case, after its level's own overrides, "
+                                    "e.g. --set numerics.shifting_beta=0.02 (repeatable)");
+  validate->add_option("--case", a.opt.only,
+                       "Run only this validation case, of any group (repeatable); with --check: whose checks to apply");
+  auto* groups = validate->add_option("--group", a.groups,
+                                      "Run only this group: analytic, paper, benchmark or robustness (repeatable; "
+                                      "default: analytic, paper and benchmark, the robustness cases only when asked for)")
+                     ->check(CLI::IsMember({"analytic", "paper", "benchmark", "robustness"}));
+  auto* quiet = validate->add_flag("--quiet", a.opt.quiet, "Only the final line");
+  validate->add_option("--check", a.check_dir,
+                       "Run nothing: apply the checks of the run's validation case (or of --case NAME) to the existing "
+                       "run directory DIR and print each with its value, tolerance and verdict (exit 0: all pass, "
+                       "1: a check fails, 2: bad input)")
+      ->excludes(quick)
+      ->excludes(out)
+      ->excludes(threads)
+      ->excludes(sets)
+      ->excludes(groups)
+      ->excludes(quiet);
+  validate->footer(footer("  particula validate --quick --out runs/validate\n"
+                          "  particula validate --case couette --case falling_cylinder --quick\n"
+                          "  particula validate --group robustness --quick\n"
+                          "  particula validate --check runs/validate/dkt\n"
+                          "  particula validate --check runs/pile --case settling_pile\n"
+                          "An unknown --case name lists the valid names."));
+  return validate;
+}
+
+int validate(ValidateArgs& a) {
+  if (!a.check_dir.empty()) {
+    if (a.opt.only.size() > 1) {
+      std::fprintf(stderr, "error: validate --check takes at most one --case\n");
+      return 2;
+    }
+    return particula::validate_check_command(a.check_dir, a.opt.only.empty() ? "" : a.opt.only.front());
+  }
+  for (const auto& g : a.groups)
+    a.opt.groups.push_back(g == "analytic"    ? particula::ValidationGroup::Analytic
+                           : g == "paper"     ? particula::ValidationGroup::Paper
+                           : g == "benchmark" ? particula::ValidationGroup::Benchmark
+                                              : particula::ValidationGroup::Robustness);
+  return particula::validate_command(a.opt);
+}
+
+struct GenerateArgs {
+  std::uint64_t seed = 0;
+  std::string out;
+};
+
+CLI::App* add_generate(CLI::App& app, GenerateArgs& a) {
+  auto* generate = app.add_subcommand(
+      "generate", "Write a random valid case file from a seed (bodies, box or channel, forces; for robustness tests)");
+  generate->add_option("--seed", a.seed, "Seed of the random case (the same seed gives the same file)")->required();
+  generate->add_option("--out", a.out, "Case file to write (default: standard output)");
+  generate->footer(footer("  particula generate --seed 7 --out seed7.toml && particula run seed7.toml"));
+  return generate;
+}
+
+CLI::App* add_schema(CLI::App& app, bool& json) {
+  auto* schema = app.add_subcommand(
+      "schema", "Print the case-file schema: the key reference (markdown, = docs/case-files.md) or, with --json, a "
+                "JSON Schema for editors");
+  schema->add_flag("--json", json,
+                   "A JSON Schema (draft-07) of case files: types, units, defaults, ranges, choices, required keys");
+  schema->footer(footer("  particula schema --json > particula-case.schema.json\n"
+                        "  (Even Better TOML / taplo: .taplo.toml associates cases/**/*.toml with "
+                        "docs/case.schema.json)"));
+  return schema;
+}
+
+int print_schema(bool json) {
+  const std::string text = json ? particula::case_json_schema() : particula::case_reference_markdown();
+  std::fwrite(text.data(), 1, text.size(), stdout);
+  return std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : particula::kExitIoFailure;
+}
+
+CLI::App* add_plot(CLI::App& app, std::string& dir) {
+  auto* plot = app.add_subcommand("plot", "(Re)draw the plots of a run directory into DIR/plots (tools/plot_run.py)");
+  plot->add_option("dir", dir, "Run directory")->required();
+  plot->footer(footer("  particula plot runs/demo"));
+  return plot;
 }
 
 }  // namespace
@@ -32,98 +198,20 @@ int main(int argc, char** argv) {
   app.footer(footer("  particula run cases/couette.toml --out runs/couette --set resolution.d0=2.5e-5\n"
                     "  particula info cases/falling_cylinder.toml\n"
                     "  particula COMMAND --help"));
-
-  particula::RunOptions run_opt;
-  std::string run_case;
-  bool no_plots = false;
-  auto* run = app.add_subcommand("run", "Run a case file and write its run directory");
-  run->add_option("case", run_case, "Case file (TOML)")->required();
-  run->add_option("--out", run_opt.out_dir, "Run directory (default runs/<case name>)");
-  run->add_option("--set", run_opt.overrides, "Override a case key, e.g. --set resolution.d0=5e-5 (repeatable)");
-  run->add_option("--threads", run_opt.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 4096));
-  run->add_option("--backend", run_opt.backend, "Compute backend: cpu (OpenMP) or cuda (GPU; needs a CUDA build)")
-      ->check(CLI::IsMember({"cpu", "cuda"}));
-  run->add_flag("--quiet", run_opt.quiet, "No progress line");
-  run->add_flag("--no-plots", no_plots, "Do not draw plots at the end of the run");
-  run->add_flag("--overwrite", run_opt.overwrite, "Replace an existing run directory");
-  run->footer(footer("  particula run cases/couette.toml\n"
-                     "  particula run cases/falling_cylinder.toml --out runs/demo --set resolution.d0=2.5e-4 "
-                     "--set time.end=0.5"));
-
-  particula::ResumeOptions resume_opt;
-  bool resume_no_plots = false;
-  auto* resume = app.add_subcommand(
-      "resume", "Continue a run from its checkpoint (DIR/checkpoint/state.bin), appending to its outputs");
-  resume->add_option("dir", resume_opt.run_dir, "Run directory")->required();
-  resume->add_option("--set", resume_opt.overrides,
-                     "Override time.end or an output.* key, e.g. --set time.end=3 (repeatable)");
-  resume->add_option("--threads", resume_opt.threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::Range(1, 4096));
-  resume->add_option("--backend", resume_opt.backend, "Compute backend: cpu or cuda")
-      ->check(CLI::IsMember({"cpu", "cuda"}));
-  resume->add_flag("--quiet", resume_opt.quiet, "No progress line");
-  resume->add_flag("--no-plots", resume_no_plots, "Do not draw plots at the end of the run");
-  resume->footer(footer("  particula resume runs/demo                      (after Ctrl-C or an I/O failure)\n"
-                        "  particula resume runs/demo --set time.end=1     (continue a finished run)"));
-
-  std::string info_case;
-  std::vector<std::string> info_overrides;
-  bool info_no_timing = false;
-  auto* info = app.add_subcommand("info", "Particle counts, time step, steps, memory and wall-time estimate of a case");
-  info->add_option("case", info_case, "Case file (TOML)")->required();
-  info->add_option("--set", info_overrides, "Override a case key (repeatable)");
-  info->add_flag("--no-timing", info_no_timing, "Do not time a few steps (no wall-time estimate)");
-  info->footer(footer("  particula info cases/dkt.toml --set resolution.d0=2e-4"));
-
-  particula::ValidateOptions validate_opt;
-  auto* validate = app.add_subcommand(
-      "validate",
-      "Run the validation cases (exact solutions, the paper's five body cases and the DFG benchmark; the robustness "
-      "cases with --group robustness) against their references and write DIR/report.md (exit 3 on a fail)");
-  validate->add_flag("--quick", validate_opt.quick,
-                     "Analytic and robustness cases at the shipped resolution (else twice as fine); paper and benchmark "
-                     "cases at a coarse level (else as shipped)");
-  validate->add_option("--out", validate_opt.out_dir, "Output directory (default runs/validate)");
-  validate->add_option("--threads", validate_opt.threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::Range(1, 4096));
-  validate->add_option("--set", validate_opt.sets,
-                       "Override a case key in every validation case, after its level's own overrides, e.g. --set "
-                       "numerics.shifting_beta=0.02 (repeatable)");
-  validate->add_option("--case", validate_opt.only, "Run only this validation case, of any group (repeatable)");
-  std::vector<std::string> validate_groups;
-  validate->add_option("--group", validate_groups,
-                       "Run only this group: analytic, paper, benchmark or robustness (repeatable; default: analytic, "
-                       "paper and benchmark, the robustness cases only when asked for)")
-      ->check(CLI::IsMember({"analytic", "paper", "benchmark", "robustness"}));
-  validate->add_flag("--quiet", validate_opt.quiet, "Only the final line");
-  validate->footer(footer("  particula validate --quick --out runs/validate\n"
-                          "  particula validate --case couette --case falling_cylinder --quick\n"
-                          "  particula validate --group robustness --quick\n"
-                          "An unknown --case name lists the valid names."));
-
-  std::uint64_t generate_seed = 0;
-  std::string generate_out;
-  auto* generate = app.add_subcommand(
-      "generate", "Write a random valid case file from a seed (bodies, box or channel, forces; for robustness tests)");
-  generate->add_option("--seed", generate_seed, "Seed of the random case (the same seed gives the same file)")
-      ->required();
-  generate->add_option("--out", generate_out, "Case file to write (default: standard output)");
-  generate->footer(footer("  particula generate --seed 7 --out seed7.toml && particula run seed7.toml"));
-
+  RunArgs run_args;
+  ResumeArgs resume_args;
+  InfoArgs info_args;
+  ValidateArgs validate_args;
+  GenerateArgs generate_args;
   bool schema_json = false;
-  auto* schema = app.add_subcommand(
-      "schema", "Print the case-file schema: the key reference (markdown, = docs/case-files.md) or, with --json, a "
-                "JSON Schema for editors");
-  schema->add_flag("--json", schema_json,
-                   "A JSON Schema (draft-07) of case files: types, units, defaults, ranges, choices, required keys");
-  schema->footer(footer("  particula schema --json > particula-case.schema.json\n"
-                        "  (Even Better TOML / taplo: .taplo.toml associates cases/**/*.toml with "
-                        "docs/case.schema.json)"));
-
   std::string plot_dir;
-  auto* plot = app.add_subcommand("plot", "(Re)draw the plots of a run directory into DIR/plots (tools/plot_run.py)");
-  plot->add_option("dir", plot_dir, "Run directory")->required();
-  plot->footer(footer("  particula plot runs/demo"));
+  auto* run = add_run(app, run_args);
+  auto* resume = add_resume(app, resume_args);
+  auto* info = add_info(app, info_args);
+  auto* validate_cmd = add_validate(app, validate_args);
+  auto* generate = add_generate(app, generate_args);
+  auto* schema = add_schema(app, schema_json);
+  auto* plot = add_plot(app, plot_dir);
 
   try {
     app.parse(argc, argv);
@@ -132,26 +220,15 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
   try {
-    run_opt.plots = !no_plots;
-    resume_opt.plots = !resume_no_plots;
-    if (*run) return particula::run_command(run_case, run_opt);
-    if (*resume) return particula::resume_command(resume_opt);
-    if (*info) return particula::info_command(info_case, info_overrides, !info_no_timing);
-    if (*validate) {
-      for (const auto& g : validate_groups)
-        validate_opt.groups.push_back(g == "analytic"    ? particula::ValidationGroup::Analytic
-                                      : g == "paper"     ? particula::ValidationGroup::Paper
-                                      : g == "benchmark" ? particula::ValidationGroup::Benchmark
-                                                         : particula::ValidationGroup::Robustness);
-      return particula::validate_command(validate_opt);
-    }
-    if (*generate) return particula::generate_command(generate_seed, generate_out);
+    run_args.opt.plots = !run_args.no_plots;
+    resume_args.opt.plots = !resume_args.no_plots;
+    if (*run) return particula::run_command(run_args.case_file, run_args.opt);
+    if (*resume) return particula::resume_command(resume_args.opt);
+    if (*info) return particula::info_command(info_args.case_file, info_args.overrides, !info_args.no_timing);
+    if (*validate_cmd) return validate(validate_args);
+    if (*generate) return particula::generate_command(generate_args.seed, generate_args.out);
     if (*plot) return particula::plot_command(plot_dir);
-    if (*schema) {
-      const std::string text = schema_json ? particula::case_json_schema() : particula::case_reference_markdown();
-      std::fwrite(text.data(), 1, text.size(), stdout);
-      return std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : particula::kExitIoFailure;
-    }
+    if (*schema) return print_schema(schema_json);
   } catch (const particula::io::WriteError& e) {
     std::fprintf(stderr, "error: I/O failure: %s\n", e.what());
     return particula::kExitIoFailure;

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "particula/analytic/solutions.hpp"
 #include "particula/solver/interpolation.hpp"
-#include "particula/validation/analytic.hpp"
 
 namespace particula {
 

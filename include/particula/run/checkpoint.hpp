@@ -104,7 +104,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file);
 // ---- the field lists ---------------------------------------------------------------------------
 // ONE list per struct, used for writing (const object) and reading (non-const object). When you
 // add a field to Particles, RigidGroup or SolverCounters: add one `ar(...)` line here, update
-// the field count below, and bump kCheckpointVersion. tests/test_checkpoint.cpp and the
+// the field count below, and bump kCheckpointVersion. tests/run/test_checkpoint.cpp and the
 // static_asserts in src/run/checkpoint.cpp fail until you do.
 
 inline constexpr std::size_t kParticlesFields = 16;  // n_boundary, next_id + 14 arrays

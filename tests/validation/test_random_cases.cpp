@@ -1,0 +1,145 @@
+// Seeded random cases (issue 14): the generator's promises (same seed, same text; what it draws
+// stays in its documented ranges) and, slow and left out under sanitizers, a batch of random
+// cases run for a few hundred steps each: a refusal at load is allowed and counted, a numerical
+// failure (exit 3 of `particula run`) fails the test with its seed, message and time.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "particula/case/error.hpp"
+#include "particula/case/load.hpp"
+#include "particula/scene/scene.hpp"
+#include "particula/solver/solver.hpp"
+#include "particula/validation/random_case.hpp"
+
+using namespace particula;
+
+namespace {
+
+/// Seeds of the batch: the first 24 (each new failure gets a reproducible name:
+/// `particula generate --seed N --out case.toml && particula run case.toml`).
+constexpr std::uint64_t kSeeds = 24;
+
+/// Seeds that still end with exit 3: open failures of issue 14, each listed in
+/// docs/validation.md. The test fails when any OTHER seed fails, and also when one of these
+/// finishes (then remove it here), so the list can only shrink.
+const std::set<std::uint64_t> kOpenFailures = {};  // seed 11 finishes since session 8
+/// Steps each accepted case runs (a few hundred: enough for bodies to start moving, the
+/// pressure waves of the start to cross the box and the first contacts to happen).
+constexpr int kSteps = 300;
+
+}  // namespace
+
+TEST(RandomCaseGenerator, SameSeedSameText) {
+  EXPECT_EQ(random_case_toml(5), random_case_toml(5));
+  EXPECT_NE(random_case_toml(5), random_case_toml(6));
+  EXPECT_EQ(random_case_toml(5).rfind("# Random case of seed 5 ", 0), 0u);
+}
+
+TEST(RandomCaseGenerator, DrawsStayInTheirRanges) {
+  int loaded = 0, with_bodies = 0, channels = 0;
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    SCOPED_TRACE(seed);
+    Case c;
+    try {
+      c = load_case_text(random_case_toml(seed), "random.toml");
+    } catch (const CaseError& e) {
+      ADD_FAILURE() << "refused at load: " << e.what();  // the generator means to make valid cases
+      continue;
+    }
+    ++loaded;
+    EXPECT_LE(c.bodies.size(), 12u);
+    EXPECT_GE(c.d0, 5e-5 * (1 - 1e-9));
+    EXPECT_LE(c.d0, 2e-4 * (1 + 1e-9));
+    const Vec2 span = c.domain_max - c.domain_min;
+    EXPECT_LE(span.x * span.y / (c.d0 * c.d0), 6400) << "a small case";
+    channels += c.periodic_x;
+    if (c.bodies.empty()) continue;
+    ++with_bodies;
+    double smallest = 1e300;
+    for (const auto& b : c.bodies) {
+      smallest = std::min(smallest, body_shape(b).min_width());
+      if (b.motion == BodyMotion::Free) {
+        EXPECT_TRUE(b.density >= 500 && b.density <= 3000) << b.density;
+      }
+    }
+    EXPECT_GE(smallest / c.d0, 10 * (1 - 1e-6));
+    EXPECT_LE(smallest / c.d0, 20 * (1 + 1e-6));
+  }
+  EXPECT_GT(with_bodies, 30);
+  EXPECT_GT(channels, 10);
+  EXPECT_LT(channels, 50);
+}
+
+namespace {
+
+struct Outcome {
+  bool refused = false;
+  std::string refusal;
+  std::optional<Failure> failure;
+  double time = 0;
+  std::int64_t step = 0;
+  std::size_t particles = 0, bodies = 0;
+};
+
+Outcome run_seed(std::uint64_t seed) {
+  Outcome o;
+  Case c;
+  try {
+    c = load_case_text(random_case_toml(seed), "random_" + std::to_string(seed) + ".toml");
+  } catch (const CaseError& e) {
+    o.refused = true;
+    o.refusal = e.what();
+    return o;
+  }
+  Scene s = build_scene(c);
+  o.particles = s.particles.size();
+  o.bodies = c.bodies.size();
+  Solver solver(s.params, s.domain, s.particles, s.groups);
+  for (int k = 0; k < kSteps && solver.time() < c.t_end; ++k) {
+    o.failure = solver.step(c.t_end - solver.time());
+    if (o.failure) break;
+  }
+  o.time = solver.time();
+  o.step = solver.step_count();
+  return o;
+}
+
+}  // namespace
+
+TEST(RandomCases, RunWithoutNumericalFailure) {
+  int refused = 0, finished = 0;
+  std::vector<std::string> failures;
+  for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+    const Outcome o = run_seed(seed);
+    if (o.refused) {
+      ++refused;
+      std::printf("seed %llu: refused at load: %s\n", static_cast<unsigned long long>(seed), o.refusal.c_str());
+      continue;
+    }
+    std::printf("seed %llu: %zu particles, %zu bodies: %s after %lld steps at t = %.6g s\n",
+                static_cast<unsigned long long>(seed), o.particles, o.bodies, o.failure ? "FAILED" : "ok",
+                static_cast<long long>(o.step), o.time);
+    const bool open = kOpenFailures.count(seed) > 0;
+    if (!o.failure) {
+      ++finished;
+      if (open) ADD_FAILURE() << "seed " << seed << " now finishes: remove it from kOpenFailures";
+      continue;
+    }
+    if (open) {
+      std::printf("  (an open failure of issue 14: %s)\n", o.failure->what.c_str());
+      continue;
+    }
+    failures.push_back(std::to_string(seed) + ": " + o.failure->what + " at t = " + std::to_string(o.time) +
+                       " s, step " + std::to_string(o.step));
+  }
+  std::printf("random cases: %llu generated, %d refused at load, %d finished %d steps, %zu failed\n",
+              static_cast<unsigned long long>(kSeeds), refused, finished, kSteps, failures.size());
+  for (const auto& f : failures) ADD_FAILURE() << "seed " << f;
+}
