@@ -439,7 +439,7 @@ motion = "fixed"
   EXPECT_LT(vmax, 5e-3);
 }
 
-// The fill next to inclined walls (docs/method-notes.md, "The fill next to walls") has the
+// The fill next to inclined walls (docs/method.md, "The fill next to walls") has the
 // symmetries of the geometry: a V-shaped valley of two 20-degree walls, symmetric about
 // x = 5 mm, and the same valley upside down (the walls above the fluid), on an unperturbed
 // lattice, give every fluid particle the mass of its mirror images. A removed lattice point

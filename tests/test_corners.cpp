@@ -1,4 +1,4 @@
-// Sharp corners (docs/method-notes.md, "Sharp corners"): an obstacle standing on a wall, the
+// Sharp corners (docs/method.md, "Sharp corners"): an obstacle standing on a wall, the
 // conditioning guard of the wall pressure P.20 and its extrapolation fallback, and sharp
 // polygons falling through the fluid without blowing up.
 #include <gtest/gtest.h>

@@ -237,7 +237,7 @@ TEST(OpenBoundary, PoiseuilleThroughAnInletAndAnOutletMatchesTheParabola) {
   const auto b = interpolate_at(s.particles(), s.domain(), s.kernel(), along);
   const real dpdx = (b.back().p - b.front().p) / (along.back().x - along.front().x);
   // 2.8 % steep at t = 2 s at 10 across, while the rows of fluid next to the walls still thin
-  // out (0.6 % at 4 s; 0.65 % at 20 across at 2 s: docs/method-notes.md, "Open boundaries")
+  // out (0.6 % at 4 s; 0.65 % at 20 across at 2 s: docs/method.md, "Open boundaries")
   EXPECT_NEAR(dpdx / (-8 * mu * Um / (H * H)), 1.0, 0.04) << "pressure gradient along the channel";
   // the fluid mass changes by the net flux alone
   const auto& f = s.open_flux();

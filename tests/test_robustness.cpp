@@ -146,10 +146,10 @@ TEST_P(RobustnessCases, CoarseLevelFinishesAndPassesItsChecks) {
 /// others. Remove a name here when its case passes. A value above 0 is a short version as for
 /// kLong below: the case up to that time, before its failure, must end with exit 0.
 /// drop_rebound was listed from session 21 (exit 3 at t = 9.2 ms, after the rebound) to session 23,
-/// when the zeroth-order correction of the first derivatives (docs/method-notes.md, "The
-/// self-coupled mode") let it finish and pass; it runs in CI in full again. rotating_drum was
+/// when the zeroth-order correction of the first derivatives (docs/method.md, "The
+/// self-coupled mode: zeroth-order gradient correction") let it finish and pass; it runs in CI in full again. rotating_drum was
 /// listed from session 14 to session 27, when surfaces facing a void took the void's pressure
-/// (docs/method-notes.md, "Surfaces facing a void"); it finishes and passes, and is long (kLong).
+/// (docs/method.md, "Surfaces facing a void: the void's pressure"); it finishes and passes, and is long (kLong).
 const std::map<std::string, double> kOpenFailures = {};
 
 /// Cases too long for CI (minutes each on two cores), run in full (with their checks) by
@@ -228,7 +228,7 @@ INSTANTIATE_TEST_SUITE_P(Ci, RobustnessShortVersion, testing::ValuesIn(short_ver
                          [](const testing::TestParamInfo<std::string>& info) { return info.param; });
 
 TEST(RobustnessSuite, LightCylindersRiseWithoutNumericalFailure) {
-  // Bodies much lighter than the fluid (docs/method-notes.md, "Light bodies"): the falling
+  // Bodies much lighter than the fluid (docs/method.md, "Light bodies"): the falling
   // cylinder case with rho_s = 50 and 100 in water (before the stabilizing added mass: exit 3 at
   // steps 3 and 5). They must rise, ever faster at first.
   for (const char* rho_s : {"50", "100"}) {
