@@ -1,4 +1,4 @@
-// Open boundaries (issue 17; boundary/open_boundary.hpp): the buffers of the scene, the
+// Open boundaries (boundary/open_boundary.hpp): the buffers of the scene, the
 // conversion, creation and deletion of particles with an exact mass balance, bitwise
 // determinism (threads, resume), checkpoints with particles created and removed, and Poiseuille
 // flow through a channel with a parabolic inlet and a pressure outlet against the exact parabola.

@@ -1,4 +1,4 @@
-// The robustness group of `particula validate` (issue 14): the shape of the group (case files,
+// The robustness group of `particula validate`: the shape of the group (case files,
 // levels, default numerics), and (slow, left out under sanitizers) the coarse group itself, one
 // CTest per case so that CTest runs them in parallel. Its checks on fabricated run directories
 // are in tests/test_robustness_checks.cpp.
@@ -141,26 +141,26 @@ TEST_P(RobustnessCases, CoarseLevelFinishesAndPassesItsChecks) {
 }
 
 /// Cases that do not yet finish or pass at the coarse level with the default numerics: open
-/// failures of issue 14, listed with their failure in docs/validation.md. They run (disabled) with
+/// failures, listed with their failure in docs/validation.md. They run (disabled) with
 /// `--gtest_also_run_disabled_tests` and in `particula validate --group robustness`; CI runs the
 /// others. Remove a name here when its case passes. A value above 0 is a short version as for
 /// kLong below: the case up to that time, before its failure, must end with exit 0.
-/// drop_rebound was listed from session 21 (exit 3 at t = 9.2 ms, after the rebound) to session 23,
-/// when the zeroth-order correction of the first derivatives (docs/method.md, "The
-/// self-coupled mode: zeroth-order gradient correction") let it finish and pass; it runs in CI in full again. rotating_drum was
-/// listed from session 14 to session 27, when surfaces facing a void took the void's pressure
-/// (docs/method.md, "Surfaces facing a void: the void's pressure"); it finishes and passes, and is long (kLong).
+/// drop_rebound needs the zeroth-order correction of the first derivatives (docs/method.md, "The
+/// self-coupled mode: zeroth-order gradient correction"; without it: exit 3 at t = 9.2 ms, after
+/// the rebound) and runs in CI in full. rotating_drum needs the void's pressure on surfaces facing
+/// a void (docs/method.md, "Surfaces facing a void: the void's pressure"); it finishes and passes,
+/// and is long (kLong).
 const std::map<std::string, double> kOpenFailures = {};
 
 /// Cases too long for CI (minutes each on two cores), run in full (with their checks) by
 /// `particula validate --group robustness`: the bodies need most of their end time to come to rest
 /// in a pile or to slide down the slope, the suspensions need 10 and 20 strain units for the
 /// statistics of their viscosity, and the channels at Re 1, 10 and 100 need 2 to 3 minutes on one
-/// core for their flows to develop (all pass since session 17; Re 0.1 stays in CI for the steady
-/// channel's checks; rotating_drum takes 19 minutes on one core). Moved here in session 18 to keep CI under 20 minutes: incline_slide,
-/// sheared_suspension and cylinder_channel_re1. CI runs a short version of those with a value here: the case
-/// up to this time (s), through the first contacts and the gaps that close, where it must not stop with exit
-/// 3 (0: no short version).
+/// core for their flows to develop (all pass; Re 0.1 stays in CI for the steady channel's checks;
+/// rotating_drum takes 19 minutes on one core). incline_slide, sheared_suspension and
+/// cylinder_channel_re1 are here to keep CI under 20 minutes. CI runs a short version of those with
+/// a value here: the case up to this time (s), through the first contacts and the gaps that close,
+/// where it must not stop with exit 3 (0: no short version).
 const std::map<std::string, double> kLong = {
     {"settling_pile", 0.1},        {"mixed_shapes", 0.08},      {"rising_lid", 0.15},
     {"incline_slide", 0.2},        {"sheared_suspension", 3},   {"dilute_shear_phi005", 0},

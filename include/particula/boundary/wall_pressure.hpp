@@ -70,7 +70,7 @@ inline constexpr real kVoidDistance = 1.6;
 /// some of that fluid is in tension (p < p0: the wake of a body pulling away, the lee of a
 /// sharp corner) the surface keeps P.20: a void pressure that followed the fluid's lowest
 /// pressure down drew the nearest fluid particle onto the surface and emptied it (mixed_shapes
-/// stopped, session 26), and one at p0 would push that fluid away from the surface.
+/// stopped), and one at p0 would push that fluid away from the surface.
 PARTICULA_HD bool void_pressure_applies(real p0, real p_min_fluid) { return p_min_fluid >= p0; }
 
 /// P.20 is solved where it is well conditioned: its denominator at least this fraction of the

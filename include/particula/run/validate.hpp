@@ -2,7 +2,7 @@
 // writing DIR/report.md. The suite is a list of entries in four groups: the analytic cases, the
 // paper's body cases (docs/method.md section 12, reference data in reference/), the benchmarks (the DFG
 // flow past a cylinder, reference/schaefer_turek1996_dfg.csv) and the robustness
-// cases (cases/robustness/, issue 14: untuned cases at default numerics, checked for physical
+// cases (cases/robustness/: untuned cases at default numerics, checked for physical
 // sanity rather than against a published curve); a new benchmark is one more entry in
 // validation_entries().
 #pragma once
