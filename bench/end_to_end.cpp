@@ -1,4 +1,4 @@
-// End-to-end throughput benchmark (issue: speed): builds a case (by default the falling
+// End-to-end throughput benchmark: builds a case (by default the falling
 // cylinder of paper 7.2), advances it a fixed number of steps and prints particles, steps, wall
 // seconds, particle-steps per second and the per-phase breakdown of Solver::phase_times().
 //

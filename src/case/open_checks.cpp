@@ -1,4 +1,4 @@
-// Checks of open boundaries ([[inlet]], [[outlet]]; docs/open-boundaries-plan.md, section 2.1),
+// Checks of open boundaries ([[inlet]], [[outlet]]; docs/method.md, "Open boundaries"),
 // run by run_cross_checks after the checks of walls (check_open_boundaries) and of bodies
 // (check_open_bodies). An open boundary is a straight segment on a bounded edge of the domain,
 // the fluid on its left walking from `from` to `to`, with `layers` rows of buffer particles

@@ -89,7 +89,7 @@ std::vector<KeySpec> make_schema() {
       choice_key("numerics.normals", {"kernel", "analytic"}, def(std::string{"analytic"}),
                  "Surface normals in the wall pressure (P.20) and forces: the exact normals of the geometry, "
                  "or the kernel sums of P.18 (noisy by a few degrees on a perturbed lattice; see "
-                 "docs/method-notes.md).",
+                 "docs/method.md, \"7. Boundary normals\").",
                  &Case::normals),
       choice_key(
           "numerics.force", {"paper", "momentum"}, def(std::string{"momentum"}),
@@ -97,7 +97,7 @@ std::vector<KeySpec> make_schema() {
           "the fluid in a band of 5 h around each solid, with fluid masses that fill the region outside "
           "the bodies exactly (second order, in balance with the momentum put into the fluid); `paper` "
           "sums the surface traction over the surface particles (P.26-P.27) with the lattice masses of "
-          "the paper's fill, to reproduce its results (docs/method-notes.md, \"Forces on solids\").",
+          "the paper's fill, to reproduce its results (docs/method.md, \"Forces on solids\").",
           &Case::force),
       choice_key(
           "numerics.gradient", {"consistent", "paper"}, def(std::string{"consistent"}),
@@ -106,7 +106,8 @@ std::vector<KeySpec> make_schema() {
           "renormalizes it (exact for constant and linear fields on any particle distribution); `paper` "
           "renormalizes only (P.7), which on an irregular distribution couples a particle's own pressure "
           "and velocity into a mode that grows at the rate c |sum_j w_j B gradW_ij| and ended runs with "
-          "fluid at twice rho0 (docs/method-notes.md, \"The self-coupled mode\").",
+          "fluid at twice rho0 (docs/method.md, \"The self-coupled mode: zeroth-order gradient "
+          "correction\").",
           &Case::gradient),
       real_key("numerics.rhie_chow_factor", "-", def(1.0), closed(0, 10),
                "Scale of the Rhie-Chow pressure stabilisation in the continuity equation.",
@@ -118,24 +119,24 @@ std::vector<KeySpec> make_schema() {
           "numerics.odd_even_damping", "-", def(0.005), closed(0, 0.05),
           "Strength alpha of the damping of odd-even (checkerboard) velocity modes, kappa = alpha c h times "
           "the difference of the compact and the wide Laplacian of V (zero for quadratic fields; "
-          "docs/method-notes.md). 0 is the paper's scheme.",
+          "docs/method.md, \"Odd-even velocity damping\"). 0 is the paper's scheme.",
           field(&Case::odd_even_damping)),
       real_key("numerics.surface_guard", "-", def(0.25), closed(0, 0.45),
                "Keep-out distance of fluid particles from walls and body surfaces, in d0: a fluid particle "
                "closer than this is put back and loses its velocity into the surface (0 turns the guard off; "
-               "docs/method-notes.md).",
+               "docs/method.md, \"Surface guard\").",
                field(&Case::surface_guard)),
       real_key("numerics.film_gap", "-", def(2.0), closed(0, 4),
                "Gap between two facing surfaces, in d0, below which the fluid between them is an unresolved "
                "film: the particles' volume change is left out of the continuity equation (fully below half "
                "this gap), so that a closing or opening gap builds no spurious cushion or suction; the "
                "lubrication force of the contact model stands for the film (0 turns it off; "
-               "docs/method-notes.md).",
+               "docs/method.md, \"Unresolved films\").",
                field(&Case::film_gap)),
       real_key("numerics.load_band_motion", "-", def(0.1), closed(0, 0.5),
                "With numerics.force = \"momentum\": how far, in d0, a solid or a particle (relative to its "
                "closest solid) may move before the band of the momentum loads is built again; less between "
-               "two solids close together (docs/method-notes.md, \"The kept band\"). 0 builds it every "
+               "two solids close together (docs/method.md, \"The kept band\"). 0 builds it every "
                "step (the reference the default is measured against); 0.1 makes many-body steps faster.",
                field(&Case::load_band_motion)),
       int_key("numerics.wall_pressure_sweeps", def(std::int64_t{1}), closed(1, 50),
@@ -198,7 +199,7 @@ std::vector<KeySpec> make_schema() {
           "Contact law between solids: a linear spring and dashpot whose stiffness is derived from the "
           "impact speed (no tuning), with damping from collision.restitution, optional friction and a "
           "lubrication correction, or the paper's repulsion P.38 (needs collision.stiffness); see "
-          "docs/method-notes.md, Contacts.",
+          "docs/method.md, \"Contacts\".",
           &Case::collision_model),
       real_key("collision.stiffness", "N/m^2; paper: N/m^4",
                def(0.0, "0 (spring_dashpot: derived; paper: no repulsion)"), ge(0),

@@ -299,7 +299,7 @@ FluidFill fill_fluid(const Case& c, Scene& sc, const BodyDistance& body_distance
   // already). Shared, because beside an inclined wall a removed point often has two kept points at
   // the same distance: giving it all to the first in lattice order piled the fluid onto the
   // downslope side of every lattice step, and a block sliding down such a wall then failed
-  // (cases/incline_wall.toml, exit 3 at 0.547 s; docs/method-notes.md, "The fill next to walls").
+  // (cases/incline_wall.toml, exit 3 at 0.547 s; docs/method.md, "The fill next to walls").
   for (const BandCell& bc : band) {
     const std::vector<std::int64_t> to = nearest_kept(kept, nx, ny, dom, bc.ix, bc.iy);
     for (const std::int64_t k : to)

@@ -1,4 +1,4 @@
-// Open boundaries in the scene (docs/method-notes.md, "Open boundaries"): the zones' geometry,
+// Open boundaries in the scene (docs/method.md, "Open boundaries"): the zones' geometry,
 // the buffer particles behind each inlet and outlet, and how far a wall that ends on an open
 // boundary continues through the buffer.
 #include <cmath>

@@ -75,7 +75,7 @@ std::vector<SurfacePoint> sample_wall(const Case& c, const Domain& dom, std::siz
   return ext;
 }
 
-/// Dummy particles of the baseline boundary (method.md section 6, last paragraph): `layers`
+/// Dummy particles of the baseline boundary (docs/method.md section 6, last paragraph): `layers`
 /// rows behind each surface point along -n; a corner gets the full block spanned by the two
 /// walls' normals.
 std::vector<std::pair<Vec2, std::size_t>> dummy_points(const std::vector<SurfacePoint>& surf, real d0, int layers) {
@@ -103,7 +103,7 @@ std::vector<std::pair<Vec2, std::size_t>> dummy_points(const std::vector<Surface
 /// fluid angle is 90 degrees the same moment at the corner fluid particle is 0.22/d0 with a
 /// unit factor and 0.03/d0 with a factor 2 (computed on the regular lattice): we scale the
 /// corner volume linearly in the solid wedge angle, 1 for a flat wall and 2 for a right-angled
-/// corner (docs/method-notes.md). Without it a loaded box corner blows up.
+/// corner (docs/method.md section 6, M.6). Without it a loaded box corner blows up.
 real corner_volume_factor(Vec2 n1, Vec2 n2) {
   const real fluid_angle = M_PI - std::acos(std::fmax(-1.0, std::fmin(1.0, dot(n1, n2))));
   const real solid_angle = 2 * M_PI - fluid_angle;

@@ -311,7 +311,8 @@ void OpenBoundaries::append_created(Particles& P, const std::vector<CreatedParti
 }
 
 // ---------------------------------------------------------------------------------------------
-// Bodies removed at outlets (outlet[].bodies = "removed"; docs/method-notes.md, "Screens")
+// Bodies removed at outlets (outlet[].bodies = "removed"; docs/method.md, "Bodies removed at an
+// outlet")
 
 void OpenBoundaries::remove_bodies_at_outlets(const OpenScene& s, Particles& P, std::vector<RigidGroup>& groups,
                                               real t) {

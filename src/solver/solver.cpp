@@ -98,7 +98,8 @@ StageParams Solver::stage_params(real dt) const {
   s.rho0 = prm_.rho0;
   s.c = prm_.c;
   s.p0 = prm_.p0;
-  s.kappa = prm_.odd_even_damping * prm_.c * prm_.h;  // kappa = alpha c h (method-notes)
+  // kappa = alpha c h (docs/method.md, "Odd-even velocity damping")
+  s.kappa = prm_.odd_even_damping * prm_.c * prm_.h;
   s.void_distance = kVoidDistance * prm_.d0;
   s.single_layer = prm_.single_layer;
   return s;
@@ -360,7 +361,7 @@ std::string Solver::likely_cause(Vec2 x) const {
         "; it is {:.3g} d0 from {} '{}': likely cause: flow back in through that boundary or a "
         "pressure wave reflected there (a channel between a velocity inlet and a pressure outlet "
         "rings at c / 4L; an inflow started faster than a few of its periods sets it ringing hard "
-        "enough to reverse the flow at the outlet: raise inlet[].ramp_time; docs/method-notes.md, "
+        "enough to reverse the flow at the outlet: raise inlet[].ramp_time; docs/method.md, "
         "\"Open boundaries\")",
         xi / prm_.d0, oz.inlet ? "inlet" : "outlet", prm_.open_specs[z].name);
   }

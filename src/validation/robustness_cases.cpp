@@ -111,11 +111,11 @@ struct ChannelBudget {
 // The mean drag and wall shear (trapezoidal rule over the output rows), plus the momentum the
 // odd-even damping took from the fluid next to the surfaces (the fdx columns: a numerical sink,
 // not a load; solver/momentum_loads.hpp, band_share_damping), plus the rate of change of the
-// fluid's momentum rho A U equal the driving rho f A. Without the momentum change (until session
-// 17) the check failed a flow still developing: 0.938 at Re 100 over 0.42-0.7 s, while the
-// fluid's mean speed went from 0.090 to 0.101 and back to 0.095 m/s. Without the damping's sink
-// (until session 45) it failed the channel at Re 100 at 10 particles across, where kappa = 1.2
-// nu: 0.948, the damping 3 % of the driving (docs/validation.md, "Session 43").
+// fluid's momentum rho A U equal the driving rho f A. Without the momentum change the check fails a
+// flow still developing: 0.938 at Re 100 over 0.42-0.7 s, while the fluid's mean speed goes from
+// 0.090 to 0.101 and back to 0.095 m/s. Without the damping's sink it fails the channel at Re 100
+// at 10 particles across, where kappa = 1.2 nu: 0.948, the damping 3 % of the driving
+// (docs/validation.md, "Robustness cases").
 ChannelBudget channel_budget(const fs::path& run_dir, const Case& c, const BodyTrack& cyl,
                              const std::vector<WallTrack>& walls, double from, double area) {
   ChannelBudget b;
@@ -165,8 +165,8 @@ void add_drag_lift_checks(std::vector<ValidationCheck>& out, const BodyTrack& cy
     // Steady: the drag's drift over the window (a least-squares line through it: its change from
     // the start to the end of the window) below 2 % of the mean, and its fluctuation about that
     // line (the pressure noise of the weakly compressible fluid, or an oscillation) below 1 %.
-    // (max - min) / mean, used until session 17, measured the noise's range: 2.3 % at Re 10 with a
-    // drift of 0.28 % and a fluctuation of 0.41 %.
+    // (max - min) / mean would measure the noise's range instead: 2.3 % at Re 10 with a drift of
+    // 0.28 % and a fluctuation of 0.41 %.
     const LineFit fit = fit_line_from(cyl.t, cyl.fx, from);
     const double drift = std::fabs(fit.slope * (t_end - from) / drag), wobble = fit.rms / std::fabs(drag);
     out.push_back(make_check(fmt::format("drag over {}: drift of a fitted line / mean; fluctuation about it / mean", win),
@@ -362,10 +362,10 @@ std::vector<ValidationCheck> settled(const fs::path& d, const Case& c, double ke
   // range below which the contact model's lubrication force carries the film between two
   // surfaces (collision.lubrication_range, and numerics.film_gap for the particles). A body that
   // close is in near contact, sinking through its film at the rate the lubrication force allows.
-  // Until session 45 the limit was 0.1 mm, which made the check depend on the seed and the instant:
-  // mixed_shapes with seeds 1 to 3 read largest gaps of 0.59, 0.90 and 1.17 d0 at 1 s and 1.14,
-  // 0.50 and 0.51 d0 at 1.5 s, the body past 1 d0 each time an ellipse sliding down the pile at
-  // 0.5-0.6 mm/s with the lubrication force acting on it (docs/validation.md, "Session 45").
+  // A limit of 0.1 mm makes the check depend on the seed and the instant: mixed_shapes with seeds
+  // 1 to 3 reads largest gaps of 0.59, 0.90 and 1.17 d0 at 1 s and 1.14, 0.50 and 0.51 d0 at
+  // 1.5 s, the body past 1 d0 each time an ellipse sliding down the pile at 0.5-0.6 mm/s with the
+  // lubrication force acting on it (docs/validation.md, "Robustness cases").
   for (auto&& k : check_bodies_touching(d, c, 2e-4)) out.push_back(std::move(k));
   return out;
 }
@@ -424,7 +424,7 @@ std::vector<ValidationEntry> robustness_entries() {
                       return check_prescribed_squeeze(d, c, 0.1);
                     }),
                     {"resolution.d0=5e-5", squeeze_schedule(0, 5e-5), squeeze_schedule(1, 5e-5)}));
-  // Bodies with open boundaries (issue 17): shipped in cases/, not cases/robustness/.
+  // Bodies with open boundaries: shipped in cases/, not cases/robustness/.
   ValidationEntry bed = entry("fluidized_bed", with_containment([](const fs::path& d, const Case& c) {
                                 return check_fluidized_bed(d, c, 0.1);
                               }));

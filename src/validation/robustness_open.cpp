@@ -81,7 +81,7 @@ std::vector<ValidationCheck> check_fluidized_bed(const fs::path& run_dir, const 
                            "drift < 5 %, fluctuation < 5 %", drift < 0.05 && wobble < 0.05));
   const double dm = fluid_mass_change(run_dir);
   out.push_back(report("fluid mass at the end / at t = 0 - 1 (the mean density change; an open defect, "
-                       "docs/method-notes.md)",
+                       "docs/method.md, \"Open boundaries\")",
                        dm, fmt::format("{:+.3g}", dm)));
   out.push_back(open_mass_balance_check(run_dir, c));
   return out;

@@ -62,8 +62,8 @@ struct WallTrack {
   std::vector<double> fdx, fdy;  // the odd-even damping's sink (zeros for a file without the columns)
 };
 
-/// The value of column `name` in row r of `table`, 0 when the file has no such column (the
-/// fdx, fdy columns of bodies.csv and walls.csv came in session 45).
+/// The value of column `name` in row r of `table`, 0 when the file has no such column (a
+/// bodies.csv or walls.csv without the fdx, fdy columns of the odd-even damping's sink).
 double column_or_zero(const io::CsvTable& table, const std::vector<double>& r, std::string_view name);
 
 std::vector<WallTrack> read_wall_tracks(const std::filesystem::path& run_dir, std::size_t walls);

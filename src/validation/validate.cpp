@@ -431,7 +431,7 @@ std::vector<ValidationEntry> validation_entries() {
   add("spin_up", false, {}, [](const fs::path& d, const Case& c) {
     return check_spin_up(d, c, c.d0 < 4e-4 ? 0.015 : 0.04, 0.005);
   });
-  // The paper's body cases (method.md section 12): the default runs the case file as shipped
+  // The paper's body cases (docs/method.md section 12): the default runs the case file as shipped
   // (the paper's resolution: hours on 2 cores), --quick the coarsest level the body-size check
   // allows (10 particles across the smallest body), with an earlier end where the full run
   // takes long.

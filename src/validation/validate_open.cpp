@@ -1,4 +1,4 @@
-// Validation of the open boundaries (issue 17): Poiseuille flow from an inlet to an outlet
+// Validation of the open boundaries: Poiseuille flow from an inlet to an outlet
 // against the exact parabola, and the DFG benchmark 2D-1 (Schaefer & Turek 1996, flow past a
 // cylinder in a channel) against the published ranges of reference/schaefer_turek1996_dfg.csv.
 #include <fmt/format.h>

@@ -1,4 +1,4 @@
-// The spring-dashpot contact model (bodies/collision.hpp, docs/method-notes.md "Contacts"): the
+// The spring-dashpot contact model (bodies/collision.hpp, docs/method.md "Contacts"): the
 // force law, dry collisions through the solver (restitution and largest overlap), the
 // lubrication force against lubrication theory, torques of off-centre contacts, and the cell
 // list of contact candidates against all pairs.

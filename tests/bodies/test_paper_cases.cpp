@@ -1,4 +1,4 @@
-// Short, coarse versions of the paper's benchmarks (method.md section 12) that run in CI and
+// Short, coarse versions of the paper's benchmarks (docs/method.md section 12) that run in CI and
 // check the direction and size of the motion against the published curves with loose
 // tolerances. The full-resolution comparisons belong to `particula validate`.
 #include <gtest/gtest.h>

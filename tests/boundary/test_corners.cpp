@@ -1,4 +1,4 @@
-// Sharp corners (docs/method-notes.md, "Sharp corners"): an obstacle standing on a wall, the
+// Sharp corners (docs/method.md, "Sharp corners"): an obstacle standing on a wall, the
 // conditioning guard of the wall pressure P.20 and its extrapolation fallback, and sharp
 // polygons falling through the fluid without blowing up.
 #include <gtest/gtest.h>
@@ -190,7 +190,7 @@ TEST(WallPressure, FluidOutOfReachInANarrowGapIsCountedApartFromCorners) {
 // surface particles take the void's pressure (guard_events.wall_pressure_void) and the fluid
 // around, at its hydrostatic pressure, flows in until every surface particle has fluid within
 // kVoidDistance d0 again. With the surface given the pressure of the fluid beyond the void (P.20
-// or the extrapolation, as before session 27) the void stayed open.
+// or the extrapolation) the void would stay open.
 TEST(WallPressure, ASurfaceFacingAVoidTakesTheVoidsPressureAndTheFluidFillsIt) {
   const real d0 = 2e-4, R = 1e-3;
   const Vec2 centre{0.004, 0.003};

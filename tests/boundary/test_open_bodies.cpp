@@ -1,4 +1,4 @@
-// Bodies at open boundaries (issue 17; docs/method-notes.md, "Screens", "Bodies removed at an
+// Bodies at open boundaries (docs/method.md, "Screens", "Bodies removed at an
 // outlet"): screens that hold free bodies back from inlets and outlets (also against a flow
 // pressing a body onto one), a prescribed body driven through a screen stopping the run, and an
 // outlet that removes bodies: the fill, the mass balance, the checkpoint and a bitwise resume.

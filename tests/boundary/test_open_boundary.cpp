@@ -1,4 +1,4 @@
-// Open boundaries (issue 17; boundary/open_boundary.hpp): the buffers of the scene, the
+// Open boundaries (boundary/open_boundary.hpp): the buffers of the scene, the
 // conversion, creation and deletion of particles with an exact mass balance, bitwise
 // determinism (threads, resume), checkpoints with particles created and removed, and Poiseuille
 // flow through a channel with a parabolic inlet and a pressure outlet against the exact parabola.
@@ -237,7 +237,7 @@ TEST(OpenBoundary, PoiseuilleThroughAnInletAndAnOutletMatchesTheParabola) {
   const auto b = interpolate_at(s.particles(), s.domain(), s.kernel(), along);
   const real dpdx = (b.back().p - b.front().p) / (along.back().x - along.front().x);
   // 2.8 % steep at t = 2 s at 10 across, while the rows of fluid next to the walls still thin
-  // out (0.6 % at 4 s; 0.65 % at 20 across at 2 s: docs/method-notes.md, "Open boundaries")
+  // out (0.6 % at 4 s; 0.65 % at 20 across at 2 s: docs/method.md, "Open boundaries")
   EXPECT_NEAR(dpdx / (-8 * mu * Um / (H * H)), 1.0, 0.04) << "pressure gradient along the channel";
   // the fluid mass changes by the net flux alone
   const auto& f = s.open_flux();

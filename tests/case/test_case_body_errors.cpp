@@ -156,7 +156,7 @@ TEST(CaseBodyErrors, BodyNameAtMost64Characters) {
 }
 
 TEST(CaseBodyErrors, PolygonVerticesAtLeastHalfD0Apart) {
-  // Two vertices 1e-8 m apart used to make steps of 5e-11 s (issue 15).
+  // Two vertices 1e-8 m apart would make steps of 5e-11 s.
   const std::string close = one_body(
       "shape = \"polygon\"\nmotion = \"fixed\"\nvertices = [\n  [0.01, 0.01],\n  [0.012, 0.01],\n"
       "  [0.012, 0.012],\n  [0.01000001, 0.012],\n  [0.01, 0.012],\n]\n");

@@ -1,5 +1,5 @@
 // Load checks of what a case would cost or compute with (src/case/cost_checks.cpp): the scales
-// of its numbers, its probes, its time steps and output counts (issue 15). Each refusal names
+// of its numbers, its probes, its time steps and output counts. Each refusal names
 // the file, line and key; the shipped cases pass; `info` counts the probes' memory.
 #include <gtest/gtest.h>
 

@@ -360,7 +360,7 @@ TEST(CaseLoadErrors, InvalidName) {
 
 TEST(CaseLoadErrors, NamesAtMost64Characters) {
   // Names become file names (runs/<name>, probe_<name>.csv) and columns: a 300-character probe name
-  // used to fail with "File name too long" after the run directory was made (issue 15).
+  // would fail with "File name too long" after the run directory was made.
   const std::string ok(64, 'n'), long_name(65, 'n');
   const std::string walls_probes = kMinimal +
                                    "\n[[wall]]\nname = \"w\"\nfrom = [0, 0]\nto = [1e-3, 0]\n"
@@ -440,7 +440,7 @@ TEST(CaseLoadErrors, ProbePointsRequiredAndAtLeastTwo) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Probes at points and coefficient references (issue 16, item 3).
+// Probes at points and coefficient references.
 
 namespace {
 const std::string kPointProbe = kMinimal + R"(

@@ -1,4 +1,4 @@
-// [[inlet]] and [[outlet]] at load (issue 17; docs/open-boundaries-plan.md, section 2.1): the
+// [[inlet]] and [[outlet]] at load (docs/method.md, "Open boundaries"): the
 // keys and their values in Case, and the cross checks of open_checks.cpp, each error naming the
 // file, the line and the key.
 #include <fmt/format.h>

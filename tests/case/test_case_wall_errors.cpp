@@ -1,4 +1,4 @@
-// [[wall]] cross checks at load (issue 14): orientation on the domain edges, periodic edges,
+// [[wall]] cross checks at load: orientation on the domain edges, periodic edges,
 // overlapping walls, chains (gaps, joints, head to tail), walls against bodies. Each error
 // names the file, the line and the key; every shipped case still loads.
 #include <gtest/gtest.h>
@@ -143,7 +143,7 @@ TEST(CaseWallErrors, CollinearWallsOverlapping) {
 }
 
 TEST(CaseWallErrors, WallShorterThanHalfD0) {
-  // A 1e-15 m wall used to give NaN at step 1 (issue 15).
+  // A 1e-15 m wall would give NaN at step 1.
   expect_error(box_with_wall("tiny", "[0.01, 0.03]", "[0.01, 0.030000000000001]"), "wall[4].to",
                "to = [0.01, 0.030000000000001]",
                "wall 'tiny' is 1e-15 m long, shorter than d0/2 = 5e-05 m");
@@ -335,7 +335,7 @@ TEST(CaseWallErrors, OnlyAFixedBodyStandsOnAWall) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Arcs, turning walls and the enclosed region (issue 19).
+// Arcs, turning walls and the enclosed region.
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The user's files and runs through the command line (issue 15): --overwrite replaces only a run
+// The user's files and runs through the command line: --overwrite replaces only a run
 // directory particula made (never '.', '..', a directory or file of the user's, a link) and keeps
 // the old run until the new one has started; a file-system failure is exit code 4, logged, and
 // the run resumes from its last checkpoint; temporary files of a killed particula are removed on

@@ -157,7 +157,7 @@ TEST(CliMutation, InfoOnMalformedCasesEndsWithExitZeroOrTwo) {
   std::printf("%d mutants:%s\n", total, summary.c_str());
 }
 
-// ---- targeted mutants, run (issue 15) --------------------------------------------------------
+// ---- targeted mutants, run -------------------------------------------------------------------
 //
 // The kinds of input a fault-injection pass found accepted at load and then crashing, hanging or
 // writing NaN: extreme numbers (one, or the whole case scaled), long names, probes (outside the

@@ -1,4 +1,4 @@
-// The CUDA backend against the CPU path (issue: speed). On a machine without a GPU (or a build
+// The CUDA backend against the CPU path. On a machine without a GPU (or a build
 // without CUDA) the comparisons skip with the reason, and the refusal path is checked instead.
 #include <gtest/gtest.h>
 

@@ -1,6 +1,7 @@
-// The documentation and the shipped case files name only paths inside the project (issue 16,
-// item 6): no path into a sibling directory or a machine's own directories, and every
-// reference/<file> they name exists in the repository.
+// The documentation and the shipped case files name only paths inside the project: no path into a
+// sibling directory or a machine's own directories, and every reference/<file> they name exists in
+// the repository. They speak of the project in the present tense (no work session or issue
+// number), and every markdown file the docs link exists.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -23,6 +24,14 @@ std::vector<fs::path> checked_files() {
     if (e.path().extension() == ".md") files.push_back(e.path());
   for (const auto& e : fs::recursive_directory_iterator(kRoot / "cases"))
     if (e.path().extension() == ".toml") files.push_back(e.path());
+  return files;
+}
+
+/// README.md and docs/*.md.
+std::vector<fs::path> markdown_docs() {
+  std::vector<fs::path> files{kRoot / "README.md"};
+  for (const auto& e : fs::directory_iterator(kRoot / "docs"))
+    if (e.path().extension() == ".md") files.push_back(e.path());
   return files;
 }
 
@@ -63,4 +72,40 @@ TEST(DocsPaths, EveryReferenceFileNamedExists) {
       EXPECT_TRUE(fs::exists(kRoot / "reference" / (*it)[1].str())) << fs::relative(f, kRoot) << " names " << (*it)[0];
   }
   EXPECT_GT(count, 5) << "the case files name their reference data";
+}
+
+TEST(DocsPaths, NoWorkSessionOrIssueNumber) {
+  // The project's history (work sessions, issue numbers) is kept by git and CHANGELOG.md; the docs
+  // and the case files state what is, in the present tense. `session.hpp` is a file name.
+  const std::regex work(
+      R"(\bsessions? #?[0-9]+|\bissues? #?[0-9]+|\b(since|until|before|after|in) (the )?session\b(?!\.hpp))",
+      std::regex::ECMAScript | std::regex::icase);
+  // The samples are built from parts, so that a grep of the sources for such mentions finds none.
+  const std::string s = "Session", i = "issue";
+  ASSERT_TRUE(std::regex_search("as measured in work " + s + " 43", work));
+  ASSERT_TRUE(std::regex_search("bodies at outlets (" + i + " 17)", work));
+  ASSERT_TRUE(std::regex_search("passes since the " + s, work));
+  ASSERT_FALSE(std::regex_search("the loop's type, declared in " + s + ".hpp", work));
+  const auto files = checked_files();
+  EXPECT_GT(files.size(), 10u);
+  for (const auto& f : files)
+    for (const auto& hit : matching_lines(f, work)) ADD_FAILURE() << hit;
+}
+
+TEST(DocsPaths, EveryMarkdownFileLinkedExists) {
+  // `docs/X.md` names docs/X.md; `(X.md` (a link relative to docs/ or to the root) names docs/X.md
+  // or X.md at the root.
+  const std::regex linked(R"((docs/|\()([A-Za-z0-9_.-]+\.md)\b)");
+  int count = 0;
+  for (const auto& f : markdown_docs()) {
+    const std::string text = read(f);
+    for (std::sregex_iterator it(text.begin(), text.end(), linked), end; it != end; ++it, ++count) {
+      const std::string name = (*it)[2].str();
+      const bool in_docs = fs::exists(kRoot / "docs" / name);
+      const bool found = (*it)[1].str() == "docs/" ? in_docs : in_docs || fs::exists(kRoot / name);
+      EXPECT_TRUE(found) << fs::relative(f, kRoot) << " links " << (*it)[0] << ": no such file in docs/"
+                         << ((*it)[1].str() == "docs/" ? "" : " or the root");
+    }
+  }
+  EXPECT_GT(count, 20) << "the docs link each other";
 }

@@ -1,4 +1,4 @@
-"""Derived outputs in a run directory (issue 16, item 3): coefficients.csv for a body with a
+"""Derived outputs in a run directory: coefficients.csv for a body with a
 reference velocity and length, flow_<name>.csv for a line probe, a probe at points, all read
 with particula.read_run."""
 import os

@@ -1,5 +1,5 @@
 """ParaView opens a run's particles.pvd without warnings and reads every snapshot with the point
-count of summary.json at the times of particles.pvd (issue 16, "Must show"). Runs only where
+count of summary.json at the times of particles.pvd. Runs only where
 pvpython is installed (Debian: `apt-get install paraview python3-paraview xvfb`, optional, not in
 scripts/install-deps); skipped otherwise, with the reason in pytest's summary."""
 import json

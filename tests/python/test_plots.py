@@ -1,4 +1,4 @@
-"""tools/plot_run.py (issue 16, item 4): plots for a run with derived outputs, and for a run that
+"""tools/plot_run.py: plots for a run with derived outputs, and for a run that
 failed (exit 3): drawn, each title naming the case and its resolution."""
 import os
 import subprocess

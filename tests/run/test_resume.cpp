@@ -233,7 +233,7 @@ TEST(Resume, NumericalFailureWritesADiagnosticCheckpoint) {
 }
 
 TEST(Resume, CheckpointOfAnotherCaseIsRefused) {
-  // The reproducer of issue 15: another case's state.bin copied into a run directory.
+  // Another case's state.bin copied into a run directory.
   const fs::path dir = fresh_dir("resume_other_case");
   ASSERT_EQ(cli(couette(dir / "couette", "0.02")).code, 0);
   const auto other = cli({"run", (fs::path(PARTICULA_SOURCE_DIR) / "cases" / "hydrostatic.toml").string(), "--out",
@@ -313,7 +313,7 @@ TEST(Resume, TamperedCheckpointWithAValidChecksumIsRefusedWithExitTwo) {
 }
 
 TEST(Resume, TurningWallResumesBitwiseIdentical) {
-  // The spin-up container (an arc wall turning about its centre, issue 19), coarse: its pose,
+  // The spin-up container (an arc wall turning about its centre), coarse: its pose,
   // its particles running round the circle and its torque continue exactly.
   const fs::path dir = fresh_dir("resume_turning_wall");
   const fs::path spin = fs::path(PARTICULA_SOURCE_DIR) / "cases" / "spin_up.toml";

@@ -1,4 +1,4 @@
-// No success with broken numbers (issue 15, item 4): every output row is checked before it is
+// No success with broken numbers: every output row is checked before it is
 // written; a non-finite value writes nothing of that stream and is returned as a Failure, which
 // the run loop turns into exit code 3 (src/run/runner.cpp).
 #include <gtest/gtest.h>
@@ -135,7 +135,7 @@ TEST(RunOutputs, NonFiniteGroupStateEndsTheStep) {
   EXPECT_FALSE(ok.step().has_value());
 }
 
-// ---- derived quantities (issue 16, item 3) ----------------------------------------------------
+// ---- derived quantities -----------------------------------------------------------------------
 
 TEST(DerivedOutputs, FlowRateIsTheIntegralOfTheNormalVelocity) {
   // uniform u = (2, 0) through a vertical line 0.5 m long, walked upwards: n = +x, Q = 1 m^2/s

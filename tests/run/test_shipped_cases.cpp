@@ -1,5 +1,5 @@
 // Every shipped case (cases/*.toml) runs to twice its end time at a coarse level without a
-// numerical failure (issue 15, item 6): `particula run` with time.end doubled and a coarser
+// numerical failure: `particula run` with time.end doubled and a coarser
 // resolution.d0 must end with exit code 0, and its outputs hold no NaN or Inf.
 //
 // The analytic cases run in CI (a few seconds each on one thread). The paper cases cannot: at
@@ -52,14 +52,14 @@ const Coarse kPaper[] = {{"falling_cylinder", "2.5e-4"},
                          {"shear_migration", "2.5e-4"},
                          {"two_cylinders_shear", "2.5e-4"}};
 
-/// The container examples (issue 19) at their shipped level, 10 particles across a body: a
-/// minute (incline_wall) to several minutes (hopper) each on two cores, too long for CI. Session 14:
-/// sunk_block and ring_container pass; session 15: all four pass (incline_wall had stopped at
-/// 0.547 s until the fill next to walls shared removed cells among equally near kept points).
+/// The container examples at their shipped level, 10 particles across a body: a minute
+/// (incline_wall) to several minutes (hopper) each on two cores, too long for CI. All four pass
+/// (incline_wall needs the fill next to walls to share removed cells among equally near kept
+/// points; without it, it stops at 0.547 s).
 const Coarse kContainers[] = {
     {"incline_wall", "2e-4"}, {"hopper", "2e-4"}, {"sunk_block", "2e-4"}, {"ring_container", "5e-4"}};
 
-/// The open-boundary cases (issue 17): poiseuille_open at 10 across (about a minute to twice its
+/// The open-boundary cases: poiseuille_open at 10 across (about a minute to twice its
 /// end time), dfg_2d1 and dfg_2d2 at D/10 (several minutes to half an hour), particle_channel and
 /// fluidized_bed at 10 across a body (half an hour and over an hour): too long for CI.
 const Coarse kOpen[] = {{"poiseuille_open", "1e-4"},

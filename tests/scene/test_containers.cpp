@@ -1,4 +1,4 @@
-// Containers of any shape (issue 19): walls as segments and circular arcs, the fluid filling only
+// Containers of any shape: walls as segments and circular arcs, the fluid filling only
 // the region the walls enclose, walls turning about a pivot, and the spin-up of fluid in a
 // circular container against its exact solution (velocity and the torque on the container).
 #include <fmt/format.h>
@@ -229,7 +229,7 @@ TEST(Containers, SpinUpTorqueConvergesToTheExactSolution) {
   EXPECT_GT(order, 1.8);
 }
 
-// A Couette cell (issue 18's torque balance against an exact solution): a cylinder R1 = 5 mm
+// A Couette cell (the torque balance against an exact solution): a cylinder R1 = 5 mm
 // turning at 1 rad/s inside a fixed circular wall R2 = 1 cm, 10 particles across the gap (CI
 // time), default numerics, at t = 0.3 s (12 viscous times of the gap). Steady torque on the
 // cylinder -4 pi mu omega R1^2 R2^2 / (R2^2 - R1^2); the wall's torque about the centre must
@@ -331,7 +331,7 @@ omega = 1.0
 
 }  // namespace
 
-// A container built as a body with a hole (issue 19): the Couette cell above with the outer
+// A container built as a body with a hole: the Couette cell above with the outer
 // cylinder as a fixed polygon ring. The fluid fills the hole (and the layer outside the ring),
 // the rotor's torque matches the exact steady torque and the ring's torque balances it, as with
 // the arc wall, at 10 particles across the gap.
@@ -361,7 +361,7 @@ TEST(Containers, CouetteCellInAPolygonRingBodyMatchesTheExactTorque) {
   }
 }
 
-// Fixed bodies crossing walls and the domain's edge (issue 19): a cylinder sunk into the floor
+// Fixed bodies crossing walls and the domain's edge: a cylinder sunk into the floor
 // (crossing at 70.5 degrees) and a block reaching through the right wall past the domain's edge,
 // in a closed box of water at rest. Their parts beyond the walls are left out and each crossing is
 // a junction corner; the fluid must stay at rest outside them and inside the walls, and the
@@ -439,14 +439,14 @@ motion = "fixed"
   EXPECT_LT(vmax, 5e-3);
 }
 
-// The fill next to inclined walls (docs/method-notes.md, "The fill next to walls") has the
+// The fill next to inclined walls (docs/method.md, "The fill next to walls") has the
 // symmetries of the geometry: a V-shaped valley of two 20-degree walls, symmetric about
 // x = 5 mm, and the same valley upside down (the walls above the fluid), on an unperturbed
 // lattice, give every fluid particle the mass of its mirror images. A removed lattice point
 // beside such a wall often has two kept points at the same distance; giving its fluid to the
-// first in lattice order (until session 15: the one below before the ones beside before the one
-// above) broke the up-down symmetry (2.4 m0 beside the valley's walls), and a block sliding down
-// such a wall failed (cases/incline_wall.toml).
+// first in lattice order (the one below before the ones beside before the one above) would break
+// the up-down symmetry (2.4 m0 beside the valley's walls) and make a block sliding down such a
+// wall fail (cases/incline_wall.toml).
 TEST(Containers, FillBesideInclinedWallsHasTheGeometrysSymmetry) {
   const real H = 0.006, y_min = 0.003 - 0.005 * std::tan(20 * M_PI / 180);
   // The valley's walls, counter-clockwise (fluid on the left): the two slopes, then the box.

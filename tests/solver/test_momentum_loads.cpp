@@ -454,8 +454,8 @@ TEST(MomentumLoads, KeptBandIsBuiltAgainBeforeTwoSolidsCloseInByAShareOfTheirGap
 // (RigidGroup::force_damping) must equal the momentum the fluid lost, the driving f M t less the
 // fluid's momentum change. The damping (kappa = 1.2 nu here) takes momentum from the fluid next to
 // the surfaces, most in the start-up, where the velocity next to them is not yet resolved; it is
-// reported, not put in the loads (docs/method-notes.md, "Forces on solids"). Session 43 measured
-// the loads alone at 0.8731 of the momentum the fluid lost, with the damping 1.0017 (what is left:
+// reported, not put in the loads (docs/method.md, "Forces on solids"). The loads alone come to
+// 0.8731 of the momentum the fluid lost, with the damping 1.0017 (what is left:
 // the renormalized operators do not conserve momentum exactly).
 TEST(MomentumLoads, LoadsAndTheDampingsSinkCarryTheMomentumAChannelFlowPastACylinderLoses) {
   const Case c =

@@ -1,4 +1,4 @@
-// Wendland C2 kernel: normalization and derivative (issue: solver core).
+// Wendland C2 kernel: normalization and derivative.
 #include <gtest/gtest.h>
 
 #include "particula/sph/kernel.hpp"

@@ -1,5 +1,5 @@
 // Consistency of the renormalized operators on a randomly perturbed lattice with walls
-// (method.md sections 3, 4 and 6): exact gradients of linear fields, exact Fatehi-Manzari
+// (docs/method.md sections 3, 4 and 6): exact gradients of linear fields, exact Fatehi-Manzari
 // Laplacians of quadratic fields, P.18 normals, and the Morris baseline's wall error.
 #include <gtest/gtest.h>
 
@@ -99,9 +99,9 @@ TEST_P(GradientSchemes, GradientOfLinearFieldIsExact) {
 // A particle's own pressure must not enter its own gradient: with the paper's weights (P.7) it
 // enters as -P_i B sum_j w_j gradW_ij, which on an irregular distribution or beside a
 // single-layer wall is of order P_i / h and, paired with the same term of the divergence, makes
-// a mode that grows at the rate c |B sum_j w_j gradW_ij| (docs/method-notes.md, "The self-coupled
-// mode"). A unit pressure on particles more than h apart, zero elsewhere: each one's gradient is
-// its own term only.
+// a mode that grows at the rate c |B sum_j w_j gradW_ij| (docs/method.md, "The self-coupled
+// mode: zeroth-order gradient correction"). A unit pressure on particles more than h apart, zero
+// elsewhere: each one's gradient is its own term only.
 TEST(Operators, ConsistentGradientLeavesOutAParticlesOwnPressure) {
   real largest[2] = {0, 0};
   int scheme = 0;

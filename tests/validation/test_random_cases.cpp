@@ -1,4 +1,4 @@
-// Seeded random cases (issue 14): the generator's promises (same seed, same text; what it draws
+// Seeded random cases: the generator's promises (same seed, same text; what it draws
 // stays in its documented ranges) and, slow and left out under sanitizers, a batch of random
 // cases run for a few hundred steps each: a refusal at load is allowed and counted, a numerical
 // failure (exit 3 of `particula run`) fails the test with its seed, message and time.
@@ -26,10 +26,10 @@ namespace {
 /// `particula generate --seed N --out case.toml && particula run case.toml`).
 constexpr std::uint64_t kSeeds = 24;
 
-/// Seeds that still end with exit 3: open failures of issue 14, each listed in
+/// Seeds that still end with exit 3: open failures, each listed in
 /// docs/validation.md. The test fails when any OTHER seed fails, and also when one of these
 /// finishes (then remove it here), so the list can only shrink.
-const std::set<std::uint64_t> kOpenFailures = {};  // seed 11 finishes since session 8
+const std::set<std::uint64_t> kOpenFailures = {};  // every seed finishes
 /// Steps each accepted case runs (a few hundred: enough for bodies to start moving, the
 /// pressure waves of the start to cross the box and the first contacts to happen).
 constexpr int kSteps = 300;
@@ -133,7 +133,7 @@ TEST(RandomCases, RunWithoutNumericalFailure) {
       continue;
     }
     if (open) {
-      std::printf("  (an open failure of issue 14: %s)\n", o.failure->what.c_str());
+      std::printf("  (an open failure: %s)\n", o.failure->what.c_str());
       continue;
     }
     failures.push_back(std::to_string(seed) + ": " + o.failure->what + " at t = " + std::to_string(o.time) +

@@ -1,4 +1,4 @@
-// The robustness group of `particula validate` (issue 14): the shape of the group (case files,
+// The robustness group of `particula validate`: the shape of the group (case files,
 // levels, default numerics), and (slow, left out under sanitizers) the coarse group itself, one
 // CTest per case so that CTest runs them in parallel. Its checks on fabricated run directories
 // are in tests/validation/test_robustness_checks.cpp.
@@ -144,11 +144,11 @@ TEST_P(RobustnessCases, CoarseLevelFinishesAndPassesItsChecks) {
 /// `particula validate --group robustness`: the bodies need most of their end time to come to rest
 /// in a pile or to slide down the slope, the suspensions need 10 and 20 strain units for the
 /// statistics of their viscosity, and the channels at Re 1, 10 and 100 need 2 to 3 minutes on one
-/// core for their flows to develop (all pass since session 17; Re 0.1 stays in CI for the steady
-/// channel's checks; rotating_drum takes 19 minutes on one core). Moved here in session 18 to keep CI under 20 minutes: incline_slide,
-/// sheared_suspension and cylinder_channel_re1. CI runs a short version of those with a value here: the case
-/// up to this time (s), through the first contacts and the gaps that close, where it must not stop with exit
-/// 3 (0: no short version).
+/// core for their flows to develop (all pass; Re 0.1 stays in CI for the steady channel's checks;
+/// rotating_drum takes 19 minutes on one core). incline_slide, sheared_suspension and
+/// cylinder_channel_re1 are here to keep CI under 20 minutes. CI runs a short version of those with
+/// a value here: the case up to this time (s), through the first contacts and the gaps that close,
+/// where it must not stop with exit 3 (0: no short version).
 const std::map<std::string, double> kLong = {
     {"settling_pile", 0.1},        {"mixed_shapes", 0.08},      {"rising_lid", 0.15},
     {"incline_slide", 0.2},        {"sheared_suspension", 3},   {"dilute_shear_phi005", 0},
@@ -199,7 +199,7 @@ INSTANTIATE_TEST_SUITE_P(Ci, RobustnessShortVersion, testing::ValuesIn(short_ver
                          [](const testing::TestParamInfo<std::string>& info) { return info.param; });
 
 TEST(RobustnessSuite, LightCylindersRiseWithoutNumericalFailure) {
-  // Bodies much lighter than the fluid (docs/method-notes.md, "Light bodies"): the falling
+  // Bodies much lighter than the fluid (docs/method.md, "Light bodies"): the falling
   // cylinder case with rho_s = 50 and 100 in water (before the stabilizing added mass: exit 3 at
   // steps 3 and 5). They must rise, ever faster at first.
   for (const char* rho_s : {"50", "100"}) {

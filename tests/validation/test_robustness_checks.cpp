@@ -1,4 +1,4 @@
-// The checks of the robustness group of `particula validate` (issue 14) on fabricated run
+// The checks of the robustness group of `particula validate` on fabricated run
 // directories: overlap, gaps, energy decay, resting bodies, rebound, squeeze, viscosity,
 // containment, open-boundary cases and guard counters (tests/validation/test_robustness.cpp runs the group).
 #include <fmt/format.h>
@@ -461,7 +461,7 @@ TEST(RobustnessChecks, ChannelBudgetCountsTheDampingsSinkAtTheSurfaces) {
   EXPECT_TRUE(find(good, "(cylinder drag").pass);
   EXPECT_NEAR(find(good, "odd-even damping at the cylinder").value, 0.08, 1e-9);
   EXPECT_TRUE(find(good, "Reynolds number").pass);
-  write(false);  // a run written before session 45: no damping columns, read as zero
+  write(false);  // a run without the damping columns: read as zero
   const auto bad = check_channel_cylinder(dir, c, 1, false, 0.2);
   EXPECT_NEAR(find(bad, "(cylinder drag").value, 0.9, 1e-9);
   EXPECT_FALSE(find(bad, "(cylinder drag").pass);

@@ -1,7 +1,7 @@
-// Solid-solid contacts (docs/method-notes.md, "Contacts"):
+// Solid-solid contacts (docs/method.md, "Contacts"):
 //  - the geometry: closest approach of two placed bodies, or of a body and a straight wall, with
 //    the point where the contact force acts;
-//  - the paper's repulsion (method.md section 8, P.38), generalized to any two shapes and to a
+//  - the paper's repulsion (docs/method.md, "Contacts", P.38), generalized to any two shapes and to a
 //    body near a wall (treated as meeting its mirror image in the wall);
 //  - the default spring-dashpot law: a linear spring whose stiffness is derived from the impact
 //    speed, a dashpot from the coefficient of restitution, regularized Coulomb friction and the
@@ -121,7 +121,7 @@ PARTICULA_HD Vec2 friction_force(Vec2 v_t, real mu, real Fn, real gamma_t) {
 }
 
 /// Squeeze-film force per unit depth and unit approach speed between two cylinders (or a
-/// cylinder and a plane, R* = R) at gap g (lubrication theory, docs/method-notes.md):
+/// cylinder and a plane, R* = R) at gap g (lubrication theory, docs/method.md, "Lubrication"):
 ///   F = (3 pi / 2) mu U_n (2 R* / g)^(3/2),  R* = R_a R_b / (R_a + R_b).
 PARTICULA_HD real squeeze_film_coefficient(real mu, real R_star, real gap) {
   const real r = 2 * R_star / gap;

@@ -1,4 +1,4 @@
-// Rigid-body motion inside the predictor-corrector (method.md sections 8-9, P.21-P.23, P.32).
+// Rigid-body motion inside the predictor-corrector (docs/method.md sections 8-9, P.21-P.23, P.32).
 #pragma once
 
 #include <vector>
@@ -17,7 +17,7 @@ PARTICULA_HD Vec2 body_weight(real mass, real area, real rho_fluid, Vec2 g, bool
 }
 
 /// Added mass that keeps the explicit coupling of a body lighter than the fluid stable
-/// (docs/method-notes.md, "Light bodies"): m_s = max(0, rho_f A - M). The fluid's reaction to the
+/// (docs/method.md, "Light bodies"): m_s = max(0, rho_f A - M). The fluid's reaction to the
 /// body's acceleration (its added mass m_a, rho_f A for a circle in 2D) reaches the body one stage
 /// late through P.20, so V = V0 + dt F/M multiplies an acceleration error by about -m_a/M per
 /// stage: unstable for a body much lighter than the fluid (circles of rho_s = 50-200 in water

@@ -1,4 +1,4 @@
-// Open boundaries (docs/method-notes.md, "Open boundaries"): inlets and outlets on straight
+// Open boundaries (docs/method.md, "Open boundaries"): inlets and outlets on straight
 // segments of the domain's edge, with a buffer of particles outside the domain behind each.
 //
 // The buffer particles live in the fluid block with the kinds Inlet and Outlet. They are

@@ -1,5 +1,5 @@
 // The surface guard: no fluid particle crosses a wall or a body surface, and particle shifting
-// never moves a particle towards a surface it is close to (docs/method-notes.md, "Surface
+// never moves a particle towards a surface it is close to (docs/method.md, "Surface
 // guard"). A kinematic correction applied after the position update of every step:
 //
 //   The surface near fluid particle i is represented by its nearest surface particle s (a wall
@@ -118,7 +118,7 @@ PARTICULA_HD GuardOutcome guard_surfaces(const NearSurfaces& ns, real keep, cons
   return out;
 }
 
-/// The unresolved-film fraction of a fluid particle (docs/method-notes.md, "Unresolved films"):
+/// The unresolved-film fraction of a fluid particle (docs/method.md, "Unresolved films"):
 /// between two facing surfaces whose gap through the particle, d_a + d_b, is narrower than
 /// `film_gap`, the squeeze flow that drains (or fills) the gap is not resolved by one or two
 /// particle layers, and the particle's volume change is left out of the continuity equation in
@@ -130,7 +130,7 @@ PARTICULA_HD real film_fraction(const NearSurfaces& ns, real film_gap, const Dom
   return f <= 0 ? real(0) : (f >= 1 ? real(1) : f);
 }
 
-/// An isolated fluid particle (docs/method-notes.md, "Isolated particles"): the fluid within its
+/// An isolated fluid particle (docs/method.md, "Isolated particles"): the fluid within its
 /// kernel support, its own volume left out, weighs less than one neighbour at one particle
 /// spacing, sum_{j fluid, j != i} w_j W_ij < d0^2 W(d0), and a surface is near. P.20 of a surface
 /// particle leaves such particles out (sweeps.hpp, wall_pressure_at), and they take their pressure

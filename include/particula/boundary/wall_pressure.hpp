@@ -1,4 +1,4 @@
-// The single-layer no-slip boundary (method.md section 6, P.18-P.20): normals and the pressure
+// The single-layer no-slip boundary (docs/method.md sections 6-7, P.18-P.20): normals and the pressure
 // of a boundary particle from the normal component of the momentum equation.
 #pragma once
 
@@ -61,8 +61,8 @@ enum class WallPressureOutcome { Solved, Extrapolated, ExtrapolatedFar, Void, Ke
 /// the support) senses a void, and P.20 or the extrapolation gives the surface the pressure of
 /// the fluid beyond it, so a void stayed open: a body rose off its neighbours with nothing
 /// below it and spun up in the one-sided flow, and bodies closing on each other met the
-/// squeezed fluid's resistance but parted with none (docs/method-notes.md, "Surfaces facing a
-/// void").
+/// squeezed fluid's resistance but parted with none (docs/method.md, "Surfaces facing a
+/// void: the void's pressure").
 inline constexpr real kVoidDistance = 1.6;
 
 /// A void takes the equation of state's pressure at rest density, p0, where all the fluid in
@@ -70,7 +70,7 @@ inline constexpr real kVoidDistance = 1.6;
 /// some of that fluid is in tension (p < p0: the wake of a body pulling away, the lee of a
 /// sharp corner) the surface keeps P.20: a void pressure that followed the fluid's lowest
 /// pressure down drew the nearest fluid particle onto the surface and emptied it (mixed_shapes
-/// stopped, session 26), and one at p0 would push that fluid away from the surface.
+/// stopped), and one at p0 would push that fluid away from the surface.
 PARTICULA_HD bool void_pressure_applies(real p0, real p_min_fluid) { return p_min_fluid >= p0; }
 
 /// P.20 is solved where it is well conditioned: its denominator at least this fraction of the

@@ -19,19 +19,20 @@ namespace particula {
 enum class LaplacianScheme { FatehiManzari, Morris };
 enum class BoundaryModel { SingleLayer, Dummy };
 enum class NormalModel { Kernel, Analytic };
-/// How the hydrodynamic loads on solids are evaluated (docs/method-notes.md, "Forces on solids"):
+/// How the hydrodynamic loads on solids are evaluated (docs/method.md, "Forces on solids"):
 /// the paper's sum of the surface traction over the surface particles (P.26-P.27) with the
 /// lattice masses of the paper's fill, or the momentum balance of the fluid in a band around each
 /// solid, with fluid masses that fill the region outside the bodies exactly.
 enum class ForceModel { Paper, Momentum };
-/// The first-derivative weights of fluid particles (docs/method-notes.md, "The self-coupled
-/// mode"): the paper's renormalization (P.7), exact for linear fields, or the same with the kernel
-/// gradient also corrected to zeroth order (the weights of a particle sum to zero).
+/// The first-derivative weights of fluid particles (docs/method.md, "The self-coupled mode:
+/// zeroth-order gradient correction"): the paper's renormalization (P.7), exact for linear fields,
+/// or the same with the kernel gradient also corrected to zeroth order (the weights of a particle
+/// sum to zero).
 enum class GradientScheme { Consistent, Paper };
 enum class InitialFlow { Rest, TaylorGreen, Couette };
 /// Exact solution a case is compared with (probes get a vx_exact column, summary.json the error).
 enum class ExactSolution { None, Couette, Poiseuille, SpinUp };
-/// Solid-solid contact law (docs/method-notes.md, "Contacts").
+/// Solid-solid contact law (docs/method.md, "Contacts").
 enum class ContactModel { SpringDashpot, Paper };
 
 enum class WallShape { Segment, Arc };
@@ -56,7 +57,7 @@ struct WallSpec {
   }
 };
 
-/// An open boundary (docs/method-notes.md, "Open boundaries"): a straight segment on a bounded
+/// An open boundary (docs/method.md, "Open boundaries"): a straight segment on a bounded
 /// edge of the domain, fluid on its LEFT walking from `from` to `to` (as for walls), where fluid
 /// enters (an inlet, with a prescribed velocity along the inward normal) or leaves (an outlet, at
 /// a prescribed pressure). Outside the domain behind it lies a buffer of `layers` rows of
@@ -68,7 +69,7 @@ enum class OpenKind { Inlet, Outlet };
 enum class InletProfile { Uniform, Parabolic, Table };
 
 /// What an outlet does with a body carried to it: hold it back at its screen, or remove it
-/// there (docs/method-notes.md, "Screens").
+/// there (docs/method.md, "Screens").
 enum class OutletBodies { Held, Removed };
 
 struct OpenSpec {
@@ -185,7 +186,7 @@ struct Case {
   // [numerics]
   LaplacianScheme laplacian{};
   BoundaryModel boundary{};
-  NormalModel normals{};  // P.18 is selectable; see docs/method-notes.md
+  NormalModel normals{};  // P.18 is selectable; docs/method.md, "7. Boundary normals"
   ForceModel force{};
   GradientScheme gradient{};
   real rhie_chow_factor{};
@@ -249,7 +250,7 @@ struct Case {
   int open_layers(const OpenSpec& o) const {
     return o.layers > 0 ? o.layers : static_cast<int>(std::ceil(h_over_d0 - 1e-9)) + 1;
   }
-  /// Distance from open boundary `o` into the fluid of its screen (docs/method-notes.md, "Open
+  /// Distance from open boundary `o` into the fluid of its screen (docs/method.md, "Open
   /// boundaries"): the line, parallel to `o`, that bodies touch like a wall and never cross, so
   /// that they stay clear of what the buffer needs: the fluid within L_b + h of the line sets the
   /// buffer's fields by the fit at the mirrored ghost points, and with the momentum loads the band

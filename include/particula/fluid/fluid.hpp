@@ -1,4 +1,4 @@
-// Fluid physics per particle and per pair (method.md sections 1, 5, 10).
+// Fluid physics per particle and per pair (docs/method.md sections 1, 5, 10).
 #pragma once
 
 #include "particula/core/types.hpp"

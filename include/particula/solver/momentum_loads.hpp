@@ -1,5 +1,5 @@
 // Hydrodynamic loads on solids from the momentum balance of the fluid in a band around each
-// solid (`numerics.force = "momentum"`; docs/method-notes.md, "Forces on solids").
+// solid (`numerics.force = "momentum"`; docs/method.md, "Forces on solids").
 //
 // For any weight phi_B that is 1 on the surface of solid B and 0 on every other solid surface,
 // the divergence theorem over the fluid region gives the force and torque on B exactly:
@@ -45,7 +45,7 @@ inline constexpr real kLoadBandReach = 5.0;
 /// they have moved relative to each other by kBandGapShare max(g, kBandGapFloor d0): the
 /// partition below changes by about 4 delta / g when they close in by delta, so this keeps that
 /// change near 20 %. At 0.05 the rebound of the drop_rebound case at d0 = 1e-4 came out
-/// as with the band built every step (docs/method-notes.md, "The kept band").
+/// as with the band built every step (docs/method.md, "The kept band").
 inline constexpr real kBandGapShare = 0.05;
 inline constexpr real kBandGapFloor = 0.1;
 
@@ -114,7 +114,7 @@ constexpr int kVoronoiMaxVertices = 48;
 /// vertices: the caller then uses the particle's volume. A neighbour farther than twice the
 /// cell's farthest vertex cannot cut it and is skipped.
 ///
-/// Why (docs/method-notes.md, "Forces on solids"): the band's grad(phi) terms are an area
+/// Why (docs/method.md, "Forces on solids"): the band's grad(phi) terms are an area
 /// integral, and its quadrature weight must be the area the particle stands for now. Its volume
 /// m / rho follows the fluid's motion through the continuity equation but not particle
 /// shifting, which moves a particle relative to the fluid without changing its density; the
@@ -295,7 +295,7 @@ PARTICULA_HD void band_share_load(const BandSample& s, real phi, Vec2 grad_phi, 
 /// numerical term that is zero for quadratic fields in the interior, but next to a surface, where
 /// the compact and the wide Laplacian see one-sided supports, or on a boundary layer the particles
 /// do not resolve, it takes momentum from the fluid like a wall stress. Counted in the load, it
-/// moved the DFG cylinder's drag away from the reference (docs/method-notes.md, "Forces on
+/// moved the DFG cylinder's drag away from the reference (docs/method.md, "Forces on
 /// solids"); left out, the fluid's momentum budget misses it. So it is summed apart
 /// (RigidGroup::force_damping, the fdx and fdy columns of bodies.csv and walls.csv): the momentum
 /// the damping took from the fluid next to each solid, for budgets and for judging the resolution.

@@ -69,7 +69,7 @@ struct PhysicsParams {
   real load_band_motion{};
   std::vector<BodyParams> bodies;
   std::vector<WallPiece> walls;  // at t = 0 (a turning wall: Solver::wall_now)
-  // contacts (bodies/collision.hpp; docs/method-notes.md, Contacts)
+  // contacts (bodies/collision.hpp; docs/method.md, "Contacts")
   ContactModel collision_model{};
   real collision_stiffness{};  // spring_dashpot: k_n (0 = derived); paper: k of P.38
   real collision_range{};      // contact distance delta_c (m); 0 = 0.5 d0 (spring_dashpot), 3 d0 (paper)

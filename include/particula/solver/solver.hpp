@@ -1,5 +1,5 @@
-// The time loop of method.md section 9: predictor-corrector with frozen positions, the
-// single-layer wall pressure, rigid groups, adaptive dt and particle shifting.
+// The time loop of docs/method.md, "One time step" and section 9: predictor-corrector with
+// frozen positions, the single-layer wall pressure, rigid groups, adaptive dt and particle shifting.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// The per-particle work of one time step (method.md sections 3-10), written once as
+// The per-particle work of one time step (docs/method.md sections 3-10), written once as
 // PARTICULA_HD functions of plain pointers: the OpenMP loops of solver_passes.cpp and the CUDA
 // kernels of src/cuda/ call exactly these functions, so no formula exists twice.
 //
@@ -92,7 +92,8 @@ struct GeometryAt {
   bool B_ok = true;
   bool sparse = false;  // fluid particle whose moment matrix was bounded below (bound_sparse_moment)
   bool Bhat_ok = true;  // false only for a fluid particle's singular system: at boundary particles
-                        // Bhat = k I is the designed guard (method-notes), not an event
+                        // Bhat = k I is the designed guard (docs/method.md, "The Bhat
+                        // guard"), not an event
 };
 
 /// The geometry sweep for particle i: B_i (P.6), Bhat_i (P.11, with the soundness guard for
@@ -210,7 +211,7 @@ PARTICULA_HD GeometryAt geometry_at(const SweepContext& c, std::size_t i, real d
 /// isolated fluid particles (surface_guard.hpp, `isolated`), as P.20's pressure sums do: a lone
 /// particle 0.4 d0 off the surface moving 1 cm/s against it gave nu lap V of ~50 m/s^2 there, a
 /// surface pressure of -2.9 Pa (a thousand times the flow's viscous stress), whose gradient drove
-/// the particle faster still (docs/method-notes.md, "Isolated particles").
+/// the particle faster still (docs/method.md, "Isolated particles").
 PARTICULA_HD void velocity_derivatives_at(const SweepContext& c, std::size_t i, const Vec2* v, Mat2& L, Vec2& lap) {
   L = Mat2{};
   lap = Vec2{};
@@ -265,7 +266,7 @@ PARTICULA_HD real rhie_chow_at(const SweepContext& c, std::size_t i, const real*
 /// out: the wall pressure is a condition on the fluid beside the surface, and two surfaces that
 /// read each other's P.20 pressures across a gap narrower than the kernel support form a loop
 /// that the conditioning guard allows to amplify (weights up to 2 in magnitude), which ran away
-/// in a body resting against a wall (docs/method-notes.md, "Sharp corners"). Box corners
+/// in a body resting against a wall (docs/method.md, "Sharp corners"). Box corners
 /// (normals at 90 degrees) and a body's own surface keep the paper's treatment.
 PARTICULA_HD bool surface_across_a_gap(const SweepContext& c, std::size_t i, std::uint32_t j) {
   return j < c.nb && c.group != nullptr && c.normal != nullptr && c.kind[j] == Kind::Boundary &&
@@ -348,7 +349,7 @@ PARTICULA_HD bool shepard_pressure_at(const SweepContext& c, std::size_t i, cons
   return true;
 }
 
-/// Pressure of an isolated fluid particle (surface_guard.hpp, `isolated`; docs/method-notes.md,
+/// Pressure of an isolated fluid particle (surface_guard.hpp, `isolated`; docs/method.md,
 /// "Isolated particles"): the Shepard mean sum_j w_j W_ij P_j / sum_j w_j W_ij over the surface
 /// particles in its support, whose P.20 pressures come from the resolved fluid around them (an
 /// isolated particle is left out of P.20). The continuity equation of a particle with no fluid
@@ -475,7 +476,7 @@ PARTICULA_HD void store_velocity_derivatives(const SweepContext& c, std::size_t 
 /// the gradient's truncation error on smooth ones, but the compact Laplacian sees an odd-even
 /// (checkerboard) velocity mode that the wide one does not. kappa times this damps exactly that
 /// mode, which nothing else controls at high cell Reynolds numbers c d0 / nu
-/// (docs/method-notes.md, "Odd-even velocity damping").
+/// (docs/method.md, "Odd-even velocity damping").
 PARTICULA_HD Vec2 odd_even_velocity_at(const SweepContext& c, std::size_t i, const Mat2* grad_v, Vec2 lap_v) {
   const Mat2 Li = grad_v[i];
   Vec2 wide;
@@ -491,7 +492,7 @@ PARTICULA_HD Vec2 odd_even_velocity_at(const SweepContext& c, std::size_t i, con
 ///   -rho_i G dt bracket = (rho(p_fluid) - rho_i) / tau.
 /// The paper's bracket at a film particle also reads the surfaces' P.20 pressures, which are read
 /// from that very particle with weights that may be negative near a corner: the loop drained a
-/// resting film between two polygons to 0.5 rho0 (mixed_shapes at d0 = 5e-5; docs/method-notes.md,
+/// resting film between two polygons to 0.5 rho0 (mixed_shapes at d0 = 5e-5; docs/method.md,
 /// "Unresolved films"). The relaxation has positive weights and a rate of at most 1 per step, so
 /// it cannot amplify.
 PARTICULA_HD real film_relaxation_bracket(real rho_i, real p_fluid, const StageParams& s, real h) {

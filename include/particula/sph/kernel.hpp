@@ -1,4 +1,4 @@
-// Wendland C2 kernel in 2D with h the cut-off radius (method.md section 2, P.37).
+// Wendland C2 kernel in 2D with h the cut-off radius (docs/method.md section 2, P.37).
 #pragma once
 
 #include "particula/core/types.hpp"

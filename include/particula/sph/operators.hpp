@@ -1,4 +1,4 @@
-// Consistent SPH operators (method.md sections 3-5): the per-pair and per-particle pieces
+// Consistent SPH operators (docs/method.md sections 3-5): the per-pair and per-particle pieces
 // of the renormalized gradient, the Fatehi-Manzari Laplacian, the Morris Laplacian and the
 // Rhie-Chow terms. One source of truth shared by the CPU loops and CUDA kernels.
 //
@@ -32,13 +32,13 @@ inline constexpr real kMinMomentEigenvalue = 0.25;
 
 /// Bounds the renormalized gradient of a sparse support: where the symmetric part of M = -S has an
 /// eigenvalue below `floor`, M is lifted by (floor - that eigenvalue) I, so that |B| = |M^-1| <=
-/// 1 / floor (x . M x >= floor |x|^2 gives |M x| >= floor |x|). Why (docs/method-notes.md, "Sparse
-/// supports"): a fluid particle left with three or four neighbours at the edge of a void (under a
-/// body lifting off a wall) has an eigenvalue near 0 and a gradient amplified a thousandfold; its
-/// neighbours' small pressure differences then threw it across the void at 1 m/s, and the
-/// compression where it landed ended the run (`drop_rebound` at d0 = 1e-4). Full and half
-/// supports (eigenvalues 0.5-1.3) are untouched, so the gradient stays exact for linear fields
-/// there. Returns true when it lifted.
+/// 1 / floor (x . M x >= floor |x|^2 gives |M x| >= floor |x|). Why (docs/method.md, "Sparse
+/// supports: the gradient bounded at the edge of a void"): a fluid particle left with three or four
+/// neighbours at the edge of a void (under a body lifting off a wall) has an eigenvalue near 0 and
+/// a gradient amplified a thousandfold; its neighbours' small pressure differences then threw it
+/// across the void at 1 m/s, and the compression where it landed ended the run (`drop_rebound` at
+/// d0 = 1e-4). Full and half supports (eigenvalues 0.5-1.3) are untouched, so the gradient stays
+/// exact for linear fields there. Returns true when it lifted.
 PARTICULA_HD bool bound_sparse_moment(Mat2& S, real floor = kMinMomentEigenvalue) {
   const real a = -S.xx, d = -S.yy, b = -0.5 * (S.xy + S.yx);
   const real half_diff = 0.5 * (a - d);
@@ -55,14 +55,14 @@ PARTICULA_HD bool bound_sparse_moment(Mat2& S, real floor = kMinMomentEigenvalue
 ///   gamma_i = sum_j w_j gradW_ij / sum_j w_j W_ij   (`normal_sum` / `support`, j != i),
 /// so that the weights sum to zero, and B~ renormalizes the corrected gradient:
 ///   B~ = -[ S - gamma (x) sum_j w_j W_ij r_ij ]^-1   (`support_r` the last sum),
-/// which keeps the gradient exact for linear fields. Why (docs/method-notes.md, "The self-coupled
-/// mode"): with P.7 alone a particle's own pressure enters its gradient as -P_i B sum_j w_j gradW_ij
-/// and its own velocity its divergence as -V_i . B sum_j w_j gradW_ij; on an irregular distribution
-/// (that sum, n_i, nonzero: compressed fluid, a single-layer wall) the pair (P', V' along n_i) obeys
-/// d^2 P'/dt^2 = c^2 |n_i|^2 P' and grows at the rate c |n_i|. With the weights summing to zero
-/// neither own value enters, as on a regular lattice. The corrected moment is bounded below as
-/// P.7's is (bound_sparse_moment; `sparse` set when it lifted). Returns false (B, gamma untouched)
-/// without support or with a singular corrected moment.
+/// which keeps the gradient exact for linear fields. Why (docs/method.md, "The self-coupled mode:
+/// zeroth-order gradient correction"): with P.7 alone a particle's own pressure enters its gradient
+/// as -P_i B sum_j w_j gradW_ij and its own velocity its divergence as -V_i . B sum_j w_j gradW_ij;
+/// on an irregular distribution (that sum, n_i, nonzero: compressed fluid, a single-layer wall) the
+/// pair (P', V' along n_i) obeys d^2 P'/dt^2 = c^2 |n_i|^2 P' and grows at the rate c |n_i|. With
+/// the weights summing to zero neither own value enters, as on a regular lattice. The corrected
+/// moment is bounded below as P.7's is (bound_sparse_moment; `sparse` set when it lifted). Returns
+/// false (B, gamma untouched) without support or with a singular corrected moment.
 PARTICULA_HD bool consistent_gradient_correction(const Mat2& S, Vec2 normal_sum, real support, Vec2 support_r,
                                                  Mat2& B, Vec2& gamma, bool& sparse) {
   if (!(support > 0)) return false;
@@ -119,7 +119,7 @@ PARTICULA_HD void add_eeee(Sym4& t, real s, Vec2 e) {
   t.c[4] += s * yy * yy;
 }
 
-/// The three moment sums that define Bhat_i (method.md section 4), all fully symmetric because
+/// The three moment sums that define Bhat_i (docs/method.md section 4), all fully symmetric because
 /// gradW_ij is parallel to e_ij:
 ///   T4 = sum_j w_j r_ij e(x)gradW(x)e(x)e  = sum w r W' e e e e
 ///   T3 = sum_j w_j e(x)e(x)gradW           = sum w W' e e e
@@ -221,8 +221,8 @@ PARTICULA_HD bool laplacian_correction_tensor(const LaplacianMoments& m, const M
     if (check == BhatCheck::BoundedDiffusive) ok = laplacian_correction_is_bounded_diffusive(Bhat);
   }
   if (ok) return true;
-  // Guard (method.md section 4): a singular or unsound system falls back to Bhat = k I, with k
-  // making the operator exact for u = |x|^2/2 (H = I): k = -2 / (I : M : I).
+  // Guard (docs/method.md, "The Bhat guard"): a singular or unsound system falls back to
+  // Bhat = k I, with k making the operator exact for u = |x|^2/2 (H = I): k = -2 / (I : M : I).
   const real IMI = A[0][0] + A[0][2] + A[2][0] + A[2][2];  // multiplicities of xx and yy are 1
   const real k = -2 / IMI;
   Bhat = (std::isfinite(k) && k > 0 && k < kMaxLaplacianCorrection) ? k * identity2() : identity2();

@@ -1,4 +1,4 @@
-// Seeded random cases for robustness tests (issue 14): `particula generate --seed N` and the
+// Seeded random cases for robustness tests: `particula generate --seed N` and the
 // random-case test. A seed gives a case file (TOML text) that should load: 0-12 bodies (circle,
 // ellipse, convex polygon of 3-6 vertices, half_disc), free (density 500-3000 kg/m^3 or
 // neutrally buoyant), fixed or prescribed, at least 2 d0 clear of each other and of the walls,

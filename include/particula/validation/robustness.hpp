@@ -1,4 +1,4 @@
-// The robustness group of `particula validate` (issue 14): cases nobody tuned, run at default
+// The robustness group of `particula validate`: cases nobody tuned, run at default
 // numerics, and checks of physical sanity on their run directories (bodies.csv, walls.csv,
 // the snapshots): no body overlap, no fluid outside the domain or inside a solid, energy that
 // decays, a rebound that matches the restitution coefficient, momentum balance in a channel.

@@ -1,8 +1,8 @@
 // `particula validate`: runs the validation cases and compares each with its reference,
 // writing DIR/report.md. The suite is a list of entries in four groups: the analytic cases, the
-// paper's body cases (method.md section 12, reference data in reference/), the benchmarks (the DFG
+// paper's body cases (docs/method.md section 12, reference data in reference/), the benchmarks (the DFG
 // flow past a cylinder, reference/schaefer_turek1996_dfg.csv) and the robustness
-// cases (cases/robustness/, issue 14: untuned cases at default numerics, checked for physical
+// cases (cases/robustness/: untuned cases at default numerics, checked for physical
 // sanity rather than against a published curve); a new benchmark is one more entry in
 // validation_entries(). `particula validate --check DIR` applies one entry's checks to an
 // existing run directory. The validation module builds on the product (src/run and below), which
