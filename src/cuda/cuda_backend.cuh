@@ -1,6 +1,6 @@
 // The CUDA backend (`--backend cuda`): the particle state lives on the GPU and every
 // per-particle pass is a kernel that calls the same PARTICULA_HD function as the CPU loop in
-// src/solver/solver_passes.cpp (solver/sweeps.hpp for the physics, neighbors/neighbor_list.hpp for
+// src/solver/cpu_backend.cpp (solver/sweeps.hpp for the physics, neighbors/neighbor_list.hpp for
 // the search). One thread per particle; every neighbour sum is a gather in list order, and the
 // list is built in the CPU's order (cells sorted stably by index, neighbour cells in the same
 // order), so the GPU computes the same sums in the same order as the CPU. The list and the pair

@@ -1,7 +1,7 @@
 // The CUDA backend's fluid passes of a step: derivatives, the Rhie-Chow term and momentum,
 // continuity, the single-layer wall pressure (P.20 and its guards), the end-of-step update,
 // shifting, the surface guard and the health check. Each kernel calls the PARTICULA_HD function
-// of solver/sweeps.hpp that the CPU loop in src/solver/solver_passes.cpp calls.
+// of solver/sweeps.hpp that the CPU loop in src/solver/cpu_backend.cpp calls.
 #include <thrust/execution_policy.h>
 #include <thrust/functional.h>
 #include <thrust/reduce.h>

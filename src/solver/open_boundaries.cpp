@@ -333,70 +333,57 @@ void OpenBoundaries::remove_bodies_at_outlets(const OpenScene& s, Particles& P, 
   }
 }
 
-void OpenBoundaries::remove_body(const OpenScene& s, Particles& P, std::vector<RigidGroup>& groups, std::size_t k,
-                                 std::size_t z, real t) {
-  RigidGroup& g = groups[k];
-  const BodyParams& b = s.prm.bodies[static_cast<std::size_t>(g.body)];
-  const GroupMotion mo = group_motion(g);
-  const std::size_t first = g.first, count = g.count;
+namespace {
 
-  // The pressure in the body's place from its surface particles' P.20 pressures, carried inwards
-  // by the momentum balance of fluid that moves with the body, grad P = rho0 (f - a(x)), and
-  // weighted by inverse squared distance and surface length (every surface particle counts, so
-  // that no point deep inside is left without a value).
+/// The pressure at x in the place of the body whose surface particles are [first, first + count):
+/// their P.20 pressures carried inwards by the momentum balance of fluid that moves with the body,
+/// grad P = rho0 (f - a(x)), weighted by inverse squared distance and surface length (every
+/// surface particle counts, so that no point deep inside is left without a value).
+real pressure_in_place_of(const OpenScene& s, const Particles& P, std::size_t first, std::size_t count, Vec2 x) {
   Vec2 f = s.prm.body_force;
   if (s.prm.gravity_in_fluid) f += s.prm.gravity;
-  const auto pressure_at = [&](Vec2 x) {
-    real num = 0, den = 0;
-    for (std::size_t i = first; i < first + count; ++i) {
-      if (P.kind[i] != Kind::Boundary) continue;
-      const Vec2 d = s.domain.separation(x, P.x[i]);
-      const real w = P.ds[i] / (dot(d, d) + real(1e-4) * s.prm.d0 * s.prm.d0);
-      num += w * (P.p[i] + s.prm.rho0 * dot(f - P.acc[i], d));
-      den += w;
-    }
-    return den > 0 ? num / den : s.prm.p0;
-  };
+  real num = 0, den = 0;
+  for (std::size_t i = first; i < first + count; ++i) {
+    if (P.kind[i] != Kind::Boundary) continue;
+    const Vec2 d = s.domain.separation(x, P.x[i]);
+    const real w = P.ds[i] / (dot(d, d) + real(1e-4) * s.prm.d0 * s.prm.d0);
+    num += w * (P.p[i] + s.prm.rho0 * dot(f - P.acc[i], d));
+    den += w;
+  }
+  return den > 0 ? num / den : s.prm.p0;
+}
 
-  // The fill: the points of the fluid lattice (spacing d0 from the domain's corner) at least d0/2
-  // inside the body, as the scene keeps fluid at least d0/2 outside it; a body too thin for any
-  // gets the points inside it, or one particle at its centroid. Together they carry the fluid of
-  // the body's whole area, so that the fluid fills the region again exactly.
+/// The fill of a body's place: the points of the fluid lattice (spacing d0 from the domain's
+/// corner) at least d0/2 inside the body, as the scene keeps fluid at least d0/2 outside it; a body
+/// too thin for any gets the points inside it, or one particle at its centroid.
+std::vector<Vec2> fill_points(const OpenScene& s, const Shape& shape, const RigidGroup& g) {
+  const GroupMotion mo = group_motion(g);
+  const Domain& dom = s.domain;
   std::vector<Vec2> fill;
-  const real R = b.shape.bounding_radius(), d0 = s.prm.d0;
+  const real R = shape.bounding_radius(), d0 = s.prm.d0;
   for (const real depth : {0.5 * d0, 0.0}) {
-    const auto i0 = static_cast<long>(std::floor((g.pos.x - R - s.domain.lo.x) / d0));
-    const auto j0 = static_cast<long>(std::floor((g.pos.y - R - s.domain.lo.y) / d0));
-    const auto i1 = static_cast<long>(std::ceil((g.pos.x + R - s.domain.lo.x) / d0));
-    const auto j1 = static_cast<long>(std::ceil((g.pos.y + R - s.domain.lo.y) / d0));
+    const auto i0 = static_cast<long>(std::floor((g.pos.x - R - dom.lo.x) / d0));
+    const auto j0 = static_cast<long>(std::floor((g.pos.y - R - dom.lo.y) / d0));
+    const auto i1 = static_cast<long>(std::ceil((g.pos.x + R - dom.lo.x) / d0));
+    const auto j1 = static_cast<long>(std::ceil((g.pos.y + R - dom.lo.y) / d0));
     for (long j = j0; j <= j1; ++j)
       for (long i = i0; i <= i1; ++i) {
-        const Vec2 x{s.domain.lo.x + (static_cast<real>(i) + 0.5) * d0,
-                     s.domain.lo.y + (static_cast<real>(j) + 0.5) * d0};
-        const Vec2 rel = s.domain.separation(x, g.pos);
-        if (b.shape.signed_distance(rotate(rel, mo.cos_angle, -mo.sin_angle)) <= -depth)
-          fill.push_back(s.domain.wrap(x));
+        const Vec2 x{dom.lo.x + (static_cast<real>(i) + 0.5) * d0, dom.lo.y + (static_cast<real>(j) + 0.5) * d0};
+        const Vec2 rel = dom.separation(x, g.pos);
+        if (shape.signed_distance(rotate(rel, mo.cos_angle, -mo.sin_angle)) <= -depth) fill.push_back(dom.wrap(x));
       }
     if (!fill.empty()) break;
   }
   if (fill.empty()) fill.push_back(g.pos);
-  std::vector<CreatedParticle> made;
-  made.reserve(fill.size());
-  real fill_mass = 0;
-  for (const Vec2 x : fill) {
-    const real p = pressure_at(x);
-    const real rho = density_from_pressure(p, s.prm.rho0, s.prm.c, s.prm.p0);
-    const Vec2 r = s.domain.separation(x, g.pos);
-    const real m = rho * b.shape.area() / static_cast<real>(fill.size());
-    made.push_back({x, g.vel + g.omega * Vec2{-r.y, r.x}, p, rho, m, Kind::Fluid});
-    fill_mass += m;
-  }
+  return fill;
+}
 
-  // The body's particles leave the boundary block; the later groups and the dummies' sources move
-  // down by `count`.
+/// Takes particles [first, first + count) out of the boundary block; the later groups and the
+/// dummies' sources move down by `count`.
+void erase_boundary_range(Particles& P, std::vector<RigidGroup>& groups, std::size_t k, std::size_t first,
+                          std::size_t count) {
   const auto erase = [&](auto& v) {
-    v.erase(v.begin() + static_cast<std::ptrdiff_t>(first),
-            v.begin() + static_cast<std::ptrdiff_t>(first + count));
+    v.erase(v.begin() + static_cast<std::ptrdiff_t>(first), v.begin() + static_cast<std::ptrdiff_t>(first + count));
   };
   erase(P.x);
   erase(P.v);
@@ -413,19 +400,47 @@ void OpenBoundaries::remove_body(const OpenScene& s, Particles& P, std::vector<R
   erase(P.normal);
   erase(P.source);
   P.n_boundary -= count;
-  for (std::int32_t& s : P.source)
-    if (s >= static_cast<std::int32_t>(first + count)) s -= static_cast<std::int32_t>(count);
+  for (std::int32_t& src : P.source)
+    if (src >= static_cast<std::int32_t>(first + count)) src -= static_cast<std::int32_t>(count);
   for (std::size_t q = k + 1; q < groups.size(); ++q) groups[q].first -= count;
+}
+
+/// A removed body's group: no particles, at rest, no loads; where and when it left.
+void mark_removed(RigidGroup& g, std::size_t zone, real t) {
   g.count = 0;
   g.removed = true;
-  g.removed_at = static_cast<std::int32_t>(z);
+  g.removed_at = static_cast<std::int32_t>(zone);
   g.removed_time = t;
   g.vel = g.acc = g.vel_n = Vec2{};
   g.omega = g.alpha = g.omega_n = 0;
   g.force_pressure = g.force_viscous = g.force_collision = g.force_damping = Vec2{};
   g.torque = g.torque_collision = 0;
   g.contact_speed = 0;
+}
 
+}  // namespace
+
+void OpenBoundaries::remove_body(const OpenScene& s, Particles& P, std::vector<RigidGroup>& groups, std::size_t k,
+                                 std::size_t z, real t) {
+  RigidGroup& g = groups[k];
+  const BodyParams& b = s.prm.bodies[static_cast<std::size_t>(g.body)];
+  const std::size_t first = g.first, count = g.count;
+  // The fill carries the fluid of the body's whole area, so that the fluid fills the region
+  // again exactly, with the pressure of the body's place and the body's rigid velocity.
+  const std::vector<Vec2> fill = fill_points(s, b.shape, g);
+  std::vector<CreatedParticle> made;
+  made.reserve(fill.size());
+  real fill_mass = 0;
+  for (const Vec2 x : fill) {
+    const real p = pressure_in_place_of(s, P, first, count, x);
+    const real rho = density_from_pressure(p, s.prm.rho0, s.prm.c, s.prm.p0);
+    const Vec2 r = s.domain.separation(x, g.pos);
+    const real m = rho * b.shape.area() / static_cast<real>(fill.size());
+    made.push_back({x, g.vel + g.omega * Vec2{-r.y, r.x}, p, rho, m, Kind::Fluid});
+    fill_mass += m;
+  }
+  erase_boundary_range(P, groups, k, first, count);
+  mark_removed(g, z, t);
   // The fill joins the fluid block at its end, with new ids.
   append_created(P, made);
   OpenFlux& fl = flux_[z];

@@ -1,5 +1,4 @@
-// Wall-clock timing of the step's phases (PhaseTimes), shared by solver.cpp and
-// solver_passes.cpp.
+// Wall-clock timing of the step's phases (PhaseTimes), shared by the solver and the CPU backend.
 #pragma once
 
 #include <chrono>

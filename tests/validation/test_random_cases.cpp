@@ -4,7 +4,6 @@
 // failure (exit 3 of `particula run`) fails the test with its seed, message and time.
 #include <gtest/gtest.h>
 
-#include <set>
 
 #include <cmath>
 #include <cstdio>
@@ -26,10 +25,6 @@ namespace {
 /// `particula generate --seed N --out case.toml && particula run case.toml`).
 constexpr std::uint64_t kSeeds = 24;
 
-/// Seeds that still end with exit 3: open failures, each listed in
-/// docs/validation.md. The test fails when any OTHER seed fails, and also when one of these
-/// finishes (then remove it here), so the list can only shrink.
-const std::set<std::uint64_t> kOpenFailures = {};  // every seed finishes
 /// Steps each accepted case runs (a few hundred: enough for bodies to start moving, the
 /// pressure waves of the start to cross the box and the first contacts to happen).
 constexpr int kSteps = 300;
@@ -126,14 +121,8 @@ TEST(RandomCases, RunWithoutNumericalFailure) {
     std::printf("seed %llu: %zu particles, %zu bodies: %s after %lld steps at t = %.6g s\n",
                 static_cast<unsigned long long>(seed), o.particles, o.bodies, o.failure ? "FAILED" : "ok",
                 static_cast<long long>(o.step), o.time);
-    const bool open = kOpenFailures.count(seed) > 0;
     if (!o.failure) {
       ++finished;
-      if (open) ADD_FAILURE() << "seed " << seed << " now finishes: remove it from kOpenFailures";
-      continue;
-    }
-    if (open) {
-      std::printf("  (an open failure: %s)\n", o.failure->what.c_str());
       continue;
     }
     failures.push_back(std::to_string(seed) + ": " + o.failure->what + " at t = " + std::to_string(o.time) +

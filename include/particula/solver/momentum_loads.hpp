@@ -87,7 +87,7 @@ struct BandEntry {
   real phi = 0;
   Vec2 grad_phi;
   real area = 0;
-  // this entry's group among the groups of its block of kBandBlock entries (Solver::sum_band)
+  // this entry's group among the groups of its block of kBandBlock entries (LoadBand::sum)
   std::uint16_t slot = 0;
   // the particle sits in a film between this solid and another thinner than kFilmGap h (the sum
   // of its distances to the two): the band's pressure torque is not resolved there

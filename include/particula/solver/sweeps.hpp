@@ -1,5 +1,5 @@
 // The per-particle work of one time step (docs/method.md sections 3-10), written once as
-// PARTICULA_HD functions of plain pointers: the OpenMP loops of solver_passes.cpp and the CUDA
+// PARTICULA_HD functions of plain pointers: the OpenMP loops of cpu_backend.cpp and the CUDA
 // kernels of src/cuda/ call exactly these functions, so no formula exists twice.
 //
 // Every neighbour sum is a gather over particle i's own CSR neighbour list, in list order, so
