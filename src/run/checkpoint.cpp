@@ -72,12 +72,10 @@ void payload_fields(Ar& ar, C& c) {
 bool finite(real v) { return std::isfinite(v); }
 bool finite(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
-/// Every index and count of a checkpoint checked against the others, so that nothing the solver
-/// indexes with them can point outside its arrays, and every value it computes with is finite.
-void check_consistency(const Checkpoint& c, const std::string& what) {
-  auto fail = [&](const std::string& why) {
-    throw io::IoError(fmt::format("{}: inconsistent content ({})", what, why));
-  };
+using FailWith = std::function<void(const std::string&)>;
+
+/// Time, step and guard counters in range; the per-particle and boundary arrays of one size.
+void check_sizes(const Checkpoint& c, const FailWith& fail) {
   const Particles& P = c.particles;
   const std::size_t n = P.x.size(), nb = P.n_boundary;
   if (!std::isfinite(c.time) || c.time < 0 || c.step < 0) fail("time or step");
@@ -95,8 +93,12 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
   for (std::size_t size :
        {P.local.size(), P.normal_local.size(), P.ds.size(), P.acc.size(), P.normal.size(), P.source.size()})
     if (size != nb) fail("boundary arrays of the wrong size");
+}
 
-  // Rigid groups: contiguous ranges covering the boundary block in order.
+/// Rigid groups: contiguous ranges covering the boundary block in order, walls first, bodies
+/// numbered in order.
+void check_groups(const Checkpoint& c, const FailWith& fail) {
+  const std::size_t nb = c.particles.n_boundary;
   const std::size_t n_groups = c.groups.size();
   std::size_t next_first = 0;
   for (std::size_t k = 0; k < n_groups; ++k) {
@@ -123,9 +125,14 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
       if (c.groups[k].body != static_cast<int>(k - walls))
         fail(fmt::format("body index of rigid group {}", k));
     }
+}
 
-  // Particles: kinds and groups by block, dummy sources within their group, ids unique and
-  // below next_id (particles created at inlets take new ids; those removed at outlets leave gaps).
+/// Particles: kinds and groups by block, dummy sources within their group, ids unique and
+/// below next_id (particles created at inlets take new ids; those removed at outlets leave gaps).
+void check_particles(const Checkpoint& c, const FailWith& fail) {
+  const Particles& P = c.particles;
+  const std::size_t n = P.x.size(), nb = P.n_boundary;
+  const std::size_t n_groups = c.groups.size();
   if (P.next_id < static_cast<std::int64_t>(n)) fail("next particle id below the particle count");
   for (std::size_t i = 0; i < n; ++i) {
     const auto kind = static_cast<std::uint8_t>(P.kind[i]);
@@ -159,16 +166,21 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
   std::vector<std::int64_t> ids(P.id);
   std::sort(ids.begin(), ids.end());
   if (std::adjacent_find(ids.begin(), ids.end()) != ids.end()) fail("two particles with one id");
+}
+
+/// Open-boundary fluxes non-negative, the kept band's build state for every particle and every
+/// group or for none, output marks not after the checkpoint's time.
+void check_fluxes_band_marks(const Checkpoint& c, const FailWith& fail) {
   for (const OpenFlux& f : c.open_flux)
     if (!std::isfinite(f.mass) || f.mass < 0 || !std::isfinite(f.backflow_mass) || f.backflow_mass < 0 ||
         f.created < 0 || f.deleted < 0 || f.bodies_removed < 0 || !std::isfinite(f.body_fill_mass) ||
         f.body_fill_mass < 0)
       fail("open-boundary flux");
 
-  // The kept band's build state: every particle and every group, or nothing.
   const LoadBandState& band = c.load_band;
   if ((band.held() || !band.pos.empty() || !band.angle.empty()) &&
-      (band.x.size() != n || band.pos.size() != n_groups || band.angle.size() != n_groups))
+      (band.x.size() != c.particles.x.size() || band.pos.size() != c.groups.size() ||
+       band.angle.size() != c.groups.size()))
     fail("kept load band of the wrong size");
 
   for (const OutputMark& m : c.marks)
@@ -177,10 +189,22 @@ void check_consistency(const Checkpoint& c, const std::string& what) {
       fail(fmt::format("output mark of '{}'", m.stream));
 }
 
+/// Every index and count of a checkpoint checked against the others, so that nothing the solver
+/// indexes with them can point outside its arrays, and every value it computes with is finite.
+void check_consistency(const Checkpoint& c, const std::string& what) {
+  const FailWith fail = [&](const std::string& why) {
+    throw io::IoError(fmt::format("{}: inconsistent content ({})", what, why));
+  };
+  check_sizes(c, fail);
+  check_groups(c, fail);
+  check_particles(c, fail);
+  check_fluxes_band_marks(c, fail);
+}
+
 /// The values a resumed solver computes with: finite, positive densities and masses, bodies with
 /// mass. (A diagnostic checkpoint of a numerical failure may hold anything else: it is read for
 /// inspection, never resumed.)
-void check_values(const Checkpoint& c, const std::function<void(const std::string&)>& fail) {
+void check_values(const Checkpoint& c, const FailWith& fail) {
   const Particles& P = c.particles;
   const std::size_t n = P.size(), nb = P.n_boundary;
   for (std::size_t k = 0; k < c.groups.size(); ++k) {

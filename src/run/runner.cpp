@@ -105,67 +105,71 @@ void mark_started(Session& s, Reporter& rep) {
   if (auto warning = s.run_dir->commit()) rep.tell("warning: " + *warning);
 }
 
-/// The time loop shared by `run` and `resume`: steps to time.end, writes the outputs on their
-/// schedule and checkpoints every output.checkpoint_interval, stops on a signal (exit 130),
-/// max_steps or a numerical failure (exit 3), then writes the final state, a checkpoint and
-/// summary.json.
-int run_loop(Session& s, Reporter& rep, bool plots) {
-  Solver& solver = *s.solver;
-  const Case& c = s.c;
-  RunOutputs& out = *s.outputs;
-  const fs::path checkpoint_file = checkpoint_path(s.dir);
-
-  io::ProgressOptions popt;
-  popt.quiet = rep.quiet;
-  io::ProgressLine progress(&rep.log, popt);
-  RunStats& stats = s.stats;
-  stats = RunStats{};
-  // A long output given up on a stop request (io::Cancelled) ends the run as interrupted; what
-  // it would have written is written by the resumed run. Every output is checked before it is
-  // written: a non-finite value ends the run as a numerical failure (exit 3), as a failed step does.
+/// Writes the outputs that are due (all of them with `force`). A long output given up on a stop
+/// request (io::Cancelled) ends the run as interrupted; what it would have written is written by
+/// the resumed run. Every output is checked before it is written: a non-finite value ends the run
+/// as a numerical failure (exit 3), as a failed step does.
+struct OutputWriter {
+  RunOutputs& out;
+  const Solver& solver;
   bool cancelled = false;
-  auto write_outputs = [&](bool force) -> std::optional<Failure> {
+  std::optional<Failure> operator()(bool force) {
     try {
       return out.write(solver, force);
     } catch (const io::Cancelled&) {
       cancelled = true;
       return std::nullopt;
     }
-  };
-  // The initial state; a resumed run has it already, but writes what was due at its checkpoint
-  // and given up then.
-  std::optional<Failure> failure = write_outputs(!s.resumed);
-  mark_started(s, rep);
+  }
+};
+
+/// How the time loop ended: its status in summary.json, the exit code and the failure, if any.
+struct LoopEnd {
+  std::string status = "completed";
+  int exit_code = 0;
+  std::optional<Failure> failure;
+};
+
+/// The bodies that reached an outlet's screen in the last step and were removed, one line each.
+void report_removed_bodies(const Solver& solver, Reporter& rep) {
+  for (const Solver::BodyRemoval& r : solver.removed_in_last_step())
+    rep.say(
+        fmt::format("t = {:.9g} s, step {}: body '{}' reached the screen of outlet '{}' and was removed; {} "
+                    "fluid particles ({:.6g} kg/m) fill its place",
+                    solver.time(), solver.step_count(), solver.groups()[r.group].name,
+                    solver.params().open_specs[r.zone].name, r.fill_particles, r.fill_mass));
+}
+
+/// Steps to time.end, writing the outputs on their schedule and a checkpoint every
+/// output.checkpoint_interval; stops on max_steps, a signal or a failure (recorded in `end`).
+void step_to_end(Session& s, Reporter& rep, OutputWriter& write_outputs, io::ProgressLine& progress,
+                 LoopEnd& end) {
+  Solver& solver = *s.solver;
+  const Case& c = s.c;
+  RunStats& stats = s.stats;
+  const fs::path checkpoint_file = checkpoint_path(s.dir);
   const real ci = c.checkpoint_interval;
   real next_checkpoint =
       ci > 0 ? run_detail::next_multiple(solver.time(), ci) : std::numeric_limits<real>::infinity();
-  std::string status = "completed";
-  int exit_code = 0;
   const real eps = 1e-9 * c.t_end;
-  while (!failure && solver.time() < c.t_end - eps) {
+  while (!end.failure && solver.time() < c.t_end - eps) {
     if (c.max_steps > 0 && solver.step_count() >= c.max_steps) {
-      status = "max_steps";
+      end.status = "max_steps";
       break;
     }
-    if (stop_requested() || cancelled) {
-      status = "interrupted";
-      exit_code = 130;
+    if (stop_requested() || write_outputs.cancelled) {
+      end.status = "interrupted";
+      end.exit_code = 130;
       break;
     }
-    const real target = out.next_event(c.t_end);
-    failure = solver.step_to(target);
-    if (!failure)
-      for (const Solver::BodyRemoval& r : solver.removed_in_last_step())
-        rep.say(fmt::format(
-            "t = {:.9g} s, step {}: body '{}' reached the screen of outlet '{}' and was removed; {} "
-            "fluid particles ({:.6g} kg/m) fill its place",
-            solver.time(), solver.step_count(), solver.groups()[r.group].name,
-            solver.params().open_specs[r.zone].name, r.fill_particles, r.fill_mass));
+    const real target = s.outputs->next_event(c.t_end);
+    end.failure = solver.step_to(target);
+    if (!end.failure) report_removed_bodies(solver, rep);
     stats.add_step(solver.last_dt(), solver.time() == target, solver.particle_count(),
                    solver.last_pair_count());
-    if (!failure) failure = write_outputs(false);
-    if (failure) break;
-    if (cancelled) continue;  // interrupted: the checkpoint is written below
+    if (!end.failure) end.failure = write_outputs(false);
+    if (end.failure) break;
+    if (write_outputs.cancelled) continue;  // interrupted: the checkpoint is written below
     if (solver.time() >= next_checkpoint - 1e-9 * ci) {
       save_checkpoint(checkpoint_file, s);
       next_checkpoint = run_detail::next_multiple(solver.time(), ci);
@@ -174,38 +178,45 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
     progress.update(solver.step_count(), solver.time(), c.t_end, solver.last_dt(),
                     wall > 0 ? stats.particle_steps / wall : 0);
   }
-  progress.finish();
-  // The final state (after a stop request, long outputs are skipped at once).
-  if (!failure) failure = write_outputs(true);
-  if (failure) {  // the state as far as it is finite, and a diagnostic checkpoint
+}
+
+/// The final state (after a stop request, long outputs are skipped at once) and the restartable
+/// checkpoint; after a failure, the state as far as it is finite and a diagnostic checkpoint.
+void write_final_state(Session& s, Reporter& rep, OutputWriter& write_outputs, LoopEnd& end) {
+  const Solver& solver = *s.solver;
+  const fs::path checkpoint_file = checkpoint_path(s.dir);
+  if (!end.failure) end.failure = write_outputs(true);
+  if (end.failure) {
     write_outputs(true);
     const fs::path diag = checkpoint_file.parent_path() / kFailureCheckpoint;
     save_checkpoint(diag, s);
     const std::string msg = fmt::format(
         "numerical failure at t = {:.9g} s, step {}: {} at ({:.6g}, {:.6g}); last snapshot and a diagnostic "
         "checkpoint ({}) written",
-        solver.time(), solver.step_count(), failure->what, failure->position.x, failure->position.y,
-        diag.string());
+        solver.time(), solver.step_count(), end.failure->what, end.failure->position.x,
+        end.failure->position.y, diag.string());
     rep.log.record("error: " + msg);
     std::fprintf(stderr, "error: %s\n", msg.c_str());
-    status = "failed";
-    exit_code = 3;
+    end.status = "failed";
+    end.exit_code = 3;
   } else {
-    save_checkpoint(checkpoint_file, s);  // the restartable checkpoint
+    save_checkpoint(checkpoint_file, s);
   }
-  if (exit_code == 130)
+  if (end.exit_code == 130)
     rep.tell(
         fmt::format("interrupted at t = {:.9g} s: checkpoint written; continue with: particula resume {}",
                     solver.time(), s.dir.string()));
-  const double wall = stats.wall_seconds();
-  const auto& cnt = solver.counters();
-  const auto particle_error = particle_profile_error(solver, c, stop_requested);
-  io::write_file_atomic(s.dir / "summary.json",
-                        run_summary(s, RunEnd{status, exit_code, failure, {}}, particle_error).dump());
+}
 
+/// The run's totals in the log: steps and speed, guard events, open-boundary fluxes, errors
+/// against the exact solution.
+void report_totals(const Session& s, Reporter& rep, const std::string& status, double wall,
+                   const std::optional<double>& particle_error) {
+  const Solver& solver = *s.solver;
+  const auto& cnt = solver.counters();
   rep.say(fmt::format("{}: t = {:.6g} s after {} steps in {:.2f} s ({:.3g} particle-steps/s on {} threads)",
                       status, solver.time(), solver.step_count(), wall,
-                      wall > 0 ? stats.particle_steps / wall : 0.0, omp_get_max_threads()));
+                      wall > 0 ? s.stats.particle_steps / wall : 0.0, omp_get_max_threads()));
   rep.say(
       fmt::format("guard events: singular B {}, singular Bhat at fluid particles {}, wall pressure kept {}, "
                   "extrapolated where ill-conditioned (corners, contact wedges) {}, extrapolated in narrow "
@@ -215,49 +226,78 @@ int run_loop(Session& s, Reporter& rep, bool plots) {
                   cnt.wall_pressure_extrapolated_far, cnt.normal_fallback, cnt.surface_pushed,
                   cnt.gap_squeezed, cnt.isolated_left_out, cnt.sparse_support, cnt.wall_pressure_void));
   if (!solver.open_flux().empty()) rep.say(open_boundary_log_line(solver));
-  const char* compared = c.exact == ExactSolution::SpinUp ? "velocity" : "vx";
+  const char* compared = s.c.exact == ExactSolution::SpinUp ? "velocity" : "vx";
   if (particle_error)
     rep.say(fmt::format(
         "L2 error of the fluid particles' {} against the exact solution: {:.4f} % of the peak speed",
         compared, 100 * *particle_error));
-  for (const auto& p : out.probes())
+  for (const auto& p : s.outputs->probes())
     if (auto e = p->last_error())
       rep.say(fmt::format(
           "probe '{}' (MLS-interpolated): L2 error of {} {:.4f} % of the peak speed at t = {:.6g} s",
           p->spec().name, compared, 100 * *e, solver.time()));
-  // Plots of every run that has data to show: completed, failed (up to the failure: where it went
-  // wrong is what one wants to see) and interrupted. An interrupted run has stopped and saved its
-  // state, so its stop request is cleared: a second Ctrl-C stops the plotting.
-  if (plots && (exit_code == 0 || exit_code == 3 || exit_code == 130)) {
-    if (exit_code == 130) g_signal.store(0);
-    switch (draw_plots(s.dir, s.dir / "log.txt", stop_requested)) {
-      case PlotOutcome::Drawn:
-        if (!rep.quiet || exit_code != 0)
-          rep.say(fmt::format("plots{} in {}",
-                              exit_code == 3     ? " up to the failure"
-                              : exit_code == 130 ? " up to the interruption"
-                                                 : "",
-                              (s.dir / "plots").string()));
-        break;
-      case PlotOutcome::NoMatplotlib:
-      case PlotOutcome::NoScript:
-        rep.say(
-            "note: no plots drawn (python3-matplotlib is not installed; scripts/install-deps installs it)");
-        break;
-      case PlotOutcome::Failed:
-        rep.say("warning: plotting failed (see log.txt); the data files are complete");
-        break;
-      case PlotOutcome::Interrupted:
-        rep.tell(
-            fmt::format("interrupted while drawing the plots: the data files are complete; draw them with: "
-                        "particula plot {}",
-                        s.dir.string()));
-        exit_code = 130;
-        break;
-    }
+}
+
+/// Plots of a run that has data to show: completed, failed (up to the failure: where it went
+/// wrong is what one wants to see) and interrupted. An interrupted run has stopped and saved its
+/// state, so its stop request is cleared: a second Ctrl-C stops the plotting. Returns the exit
+/// code, 130 when the plotting was interrupted.
+int plot_run(const Session& s, Reporter& rep, int exit_code) {
+  if (exit_code == 130) g_signal.store(0);
+  switch (draw_plots(s.dir, s.dir / "log.txt", stop_requested)) {
+    case PlotOutcome::Drawn:
+      if (!rep.quiet || exit_code != 0)
+        rep.say(fmt::format("plots{} in {}",
+                            exit_code == 3     ? " up to the failure"
+                            : exit_code == 130 ? " up to the interruption"
+                                               : "",
+                            (s.dir / "plots").string()));
+      break;
+    case PlotOutcome::NoMatplotlib:
+    case PlotOutcome::NoScript:
+      rep.say("note: no plots drawn (python3-matplotlib is not installed; scripts/install-deps installs it)");
+      break;
+    case PlotOutcome::Failed:
+      rep.say("warning: plotting failed (see log.txt); the data files are complete");
+      break;
+    case PlotOutcome::Interrupted:
+      rep.tell(
+          fmt::format("interrupted while drawing the plots: the data files are complete; draw them with: "
+                      "particula plot {}",
+                      s.dir.string()));
+      return 130;
   }
-  rep.say(fmt::format("results in {}", s.dir.string()));
   return exit_code;
+}
+
+/// The time loop shared by `run` and `resume`: steps to time.end, writes the outputs on their
+/// schedule and checkpoints every output.checkpoint_interval, stops on a signal (exit 130),
+/// max_steps or a numerical failure (exit 3), then writes the final state, a checkpoint and
+/// summary.json.
+int run_loop(Session& s, Reporter& rep, bool plots) {
+  io::ProgressOptions popt;
+  popt.quiet = rep.quiet;
+  io::ProgressLine progress(&rep.log, popt);
+  s.stats = RunStats{};
+  OutputWriter write_outputs{*s.outputs, *s.solver};
+  LoopEnd end;
+  // The initial state; a resumed run has it already, but writes what was due at its checkpoint
+  // and given up then.
+  end.failure = write_outputs(!s.resumed);
+  mark_started(s, rep);
+  step_to_end(s, rep, write_outputs, progress, end);
+  progress.finish();
+  write_final_state(s, rep, write_outputs, end);
+  const double wall = s.stats.wall_seconds();
+  const auto particle_error = particle_profile_error(*s.solver, s.c, stop_requested);
+  io::write_file_atomic(
+      s.dir / "summary.json",
+      run_summary(s, RunEnd{end.status, end.exit_code, end.failure, {}}, particle_error).dump());
+  report_totals(s, rep, end.status, wall, particle_error);
+  if (plots && (end.exit_code == 0 || end.exit_code == 3 || end.exit_code == 130))
+    end.exit_code = plot_run(s, rep, end.exit_code);
+  rep.say(fmt::format("results in {}", s.dir.string()));
+  return end.exit_code;
 }
 
 int bad_input(const std::exception& e) {
@@ -397,65 +437,117 @@ bool resume_override_allowed(const std::string& assignment) {
   return key == "time.end" || (key.rfind("output.", 0) == 0 && key.size() > 7);
 }
 
-int resume_command(const ResumeOptions& opt) {
-  for (const auto& o : opt.overrides)
+namespace {
+
+/// Whether every --set of a resume changes a key a resume may change (else says which does not).
+bool resume_overrides_allowed(const std::vector<std::string>& overrides) {
+  for (const auto& o : overrides)
     if (!resume_override_allowed(o)) {
       std::fprintf(
           stderr,
           "error: --set %s: only time.end and output.* keys can be changed when resuming (the checkpoint "
           "fixes the rest of the case)\n",
           o.c_str());
-      return 2;
+      return false;
     }
-  if (!backend_usable(opt.backend)) return 2;
-  SignalGuard signals;
-  const fs::path file = checkpoint_path(opt.run_dir);
+  return true;
+}
+
+/// The marker of a run directory that can be resumed: it exists, `particula run` made it and it
+/// has a checkpoint (`file`). Says why not and returns nothing otherwise.
+std::optional<RunMarker> resumable_run_marker(const fs::path& run_dir, const fs::path& file) {
   std::error_code ec;
-  if (!fs::is_directory(opt.run_dir, ec)) {
-    std::fprintf(stderr, "error: run directory '%s' does not exist\n", opt.run_dir.string().c_str());
-    return 2;
+  if (!fs::is_directory(run_dir, ec)) {
+    std::fprintf(stderr, "error: run directory '%s' does not exist\n", run_dir.string().c_str());
+    return std::nullopt;
   }
   std::optional<RunMarker> marker;
   try {
-    marker = read_marker(opt.run_dir);
+    marker = read_marker(run_dir);
   } catch (const io::IoError& e) {
-    return bad_input(e);
+    bad_input(e);
+    return std::nullopt;
   }
   if (!marker || marker->kind != MarkedKind::Run) {
     std::fprintf(
         stderr,
         "error: '%s' is not a particula run directory (it has no %s marker with a case; run directories are "
         "made by 'particula run')\n",
-        opt.run_dir.string().c_str(), kRunMarker);
-    return 2;
+        run_dir.string().c_str(), kRunMarker);
+    return std::nullopt;
   }
   if (!fs::exists(file, ec)) {
     std::fprintf(stderr, "error: '%s' has no checkpoint to resume from ('%s' is missing)\n",
-                 opt.run_dir.string().c_str(), file.string().c_str());
-    return 2;
+                 run_dir.string().c_str(), file.string().c_str());
+    return std::nullopt;
   }
-  Session s;
-  Checkpoint k;
+  return marker;
+}
+
+/// Reads the checkpoint `file` of the run the marker describes into `k`, and its case (with the
+/// resume's overrides) into s.c; says why they cannot be resumed and returns false otherwise.
+bool read_resume_state(const ResumeOptions& opt, const fs::path& file, const RunMarker& marker, Session& s,
+                       Checkpoint& k) {
   try {
     k = read_checkpoint(file);
-    if (k.case_hash != marker->case_hash)
+    if (k.case_hash != marker.case_hash)
       throw io::IoError(fmt::format(
           "checkpoint '{}' was written for another case (case identity {:016x}) than the one run directory "
           "'{}' was "
           "created for ({:016x}, in its {} marker): it does not belong to this run; resume refused",
-          file.string(), k.case_hash, opt.run_dir.string(), marker->case_hash, kRunMarker));
+          file.string(), k.case_hash, opt.run_dir.string(), marker.case_hash, kRunMarker));
     s.c = load_case_text(k.case_toml, file, opt.overrides);
     check_checkpoint_fits_case(k, s.c, file);
   } catch (const CaseError& e) {
-    return bad_input(e);
+    bad_input(e);
+    return false;
   } catch (const io::IoError& e) {
-    return bad_input(e);
+    bad_input(e);
+    return false;
   }
   if (s.c.t_end < k.time * (1 - 1e-12)) {
     std::fprintf(stderr, "error: key 'time.end': %.9g s is before the checkpoint's time %.9g s\n", s.c.t_end,
                  k.time);
-    return 2;
+    return false;
   }
+  return true;
+}
+
+/// Removes the temporary files a killed particula left in the run directory, and says which.
+void clean_stale_temp_files(const fs::path& dir, Reporter& rep) {
+  const auto removed = remove_stale_temp_files(dir);
+  if (removed.empty()) return;
+  std::string names;
+  for (const auto& r : removed) names += (names.empty() ? "" : ", ") + r.lexically_relative(dir).string();
+  rep.say(fmt::format("removed {} temporary file(s) left by a particula that was killed while writing: {}",
+                      removed.size(), names));
+}
+
+/// The solver at the checkpoint's state: its particles, groups, counters, fluxes and kept band.
+std::unique_ptr<Solver> restarted_solver(const Case& c, Checkpoint& k, const std::string& backend) {
+  const Domain domain{c.domain_min, c.domain_max, c.periodic_x, c.periodic_y};
+  PhysicsParams prm = physics_params(c);
+  prm.cuda = backend == "cuda";
+  auto solver = std::make_unique<Solver>(prm, domain, std::move(k.particles), std::move(k.groups),
+                                         SolverStart::Restart, k.time, k.step);
+  solver->set_counters(k.counters);
+  solver->set_open_flux(k.open_flux);
+  solver->set_load_band_state(k.load_band);
+  return solver;
+}
+
+}  // namespace
+
+int resume_command(const ResumeOptions& opt) {
+  if (!resume_overrides_allowed(opt.overrides)) return 2;
+  if (!backend_usable(opt.backend)) return 2;
+  SignalGuard signals;
+  const fs::path file = checkpoint_path(opt.run_dir);
+  const std::optional<RunMarker> marker = resumable_run_marker(opt.run_dir, file);
+  if (!marker) return 2;
+  Session s;
+  Checkpoint k;
+  if (!read_resume_state(opt, file, *marker, s, k)) return 2;
   s.dir = opt.run_dir;
   s.overrides = opt.overrides;
   s.case_hash = k.case_hash;
@@ -465,15 +557,7 @@ int resume_command(const ResumeOptions& opt) {
   std::unique_ptr<Reporter> rep;
   try {
     rep = std::make_unique<Reporter>(s.dir / "log.txt", opt.quiet);
-    const auto removed = remove_stale_temp_files(s.dir);
-    if (!removed.empty()) {
-      std::string names;
-      for (const auto& r : removed)
-        names += (names.empty() ? "" : ", ") + r.lexically_relative(s.dir).string();
-      rep->say(
-          fmt::format("removed {} temporary file(s) left by a particula that was killed while writing: {}",
-                      removed.size(), names));
-    }
+    clean_stale_temp_files(s.dir, *rep);
     io::write_file_atomic(s.dir / "case.toml", resolved_case_toml(s.c));
     const Particles& P = k.particles;
     s.n_fluid = P.size() - P.n_boundary;
@@ -482,14 +566,7 @@ int resume_command(const ResumeOptions& opt) {
                     "{} threads, backend {}",
                     version_line(), s.c.name, s.dir.string(), k.time, k.step, P.size(), s.c.t_end,
                     omp_get_max_threads(), opt.backend));
-    const Domain domain{s.c.domain_min, s.c.domain_max, s.c.periodic_x, s.c.periodic_y};
-    PhysicsParams prm = physics_params(s.c);
-    prm.cuda = opt.backend == "cuda";
-    s.solver = std::make_unique<Solver>(prm, domain, std::move(k.particles), std::move(k.groups),
-                                        SolverStart::Restart, k.time, k.step);
-    s.solver->set_counters(k.counters);
-    s.solver->set_open_flux(k.open_flux);
-    s.solver->set_load_band_state(k.load_band);
+    s.solver = restarted_solver(s.c, k, opt.backend);
     s.outputs = std::make_unique<RunOutputs>(s.dir, s.c, k.marks, k.time, stop_requested);
     if (stop_requested()) return interrupted_before_start(s, *rep, "the run directory is as it was");
     return run_loop(s, *rep, opt.plots);
