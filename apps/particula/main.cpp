@@ -10,6 +10,7 @@
 #include "particula/case/schema.hpp"
 #include "particula/io/error.hpp"
 #include "particula/run/info.hpp"
+#include "particula/run/limits.hpp"
 #include "particula/run/plots.hpp"
 #include "particula/run/runner.hpp"
 #include "particula/run/version.hpp"
@@ -38,7 +39,7 @@ CLI::App* add_run(CLI::App& app, RunArgs& a) {
   run->add_option("case", a.case_file, "Case file (TOML)")->required();
   run->add_option("--out", a.opt.out_dir, "Run directory (default runs/<case name>)");
   run->add_option("--set", a.opt.overrides, "Override a case key, e.g. --set resolution.d0=5e-5 (repeatable)");
-  run->add_option("--threads", a.opt.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 4096));
+  run->add_option("--threads", a.opt.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, particula::kMaxThreads));
   run->add_option("--backend", a.opt.backend, "Compute backend: cpu (OpenMP) or cuda (GPU; needs a CUDA build)")
       ->check(CLI::IsMember({"cpu", "cuda"}));
   run->add_flag("--quiet", a.opt.quiet, "No progress line");
@@ -62,7 +63,7 @@ CLI::App* add_resume(CLI::App& app, ResumeArgs& a) {
   resume->add_option("--set", a.opt.overrides,
                      "Override time.end or an output.* key, e.g. --set time.end=3 (repeatable)");
   resume->add_option("--threads", a.opt.threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::Range(1, 4096));
+      ->check(CLI::Range(1, particula::kMaxThreads));
   resume->add_option("--backend", a.opt.backend, "Compute backend: cpu or cuda")
       ->check(CLI::IsMember({"cpu", "cuda"}));
   resume->add_flag("--quiet", a.opt.quiet, "No progress line");
@@ -104,7 +105,7 @@ CLI::App* add_validate(CLI::App& app, ValidateArgs& a) {
                                    "paper and benchmark cases at a coarse level (else as shipped)");
   auto* out = validate->add_option("--out", a.opt.out_dir, "Output directory (default runs/validate)");
   auto* threads = validate->add_option("--threads", a.opt.threads, "OpenMP threads (default: all cores)")
-                      ->check(CLI::Range(1, 4096));
+                      ->check(CLI::Range(1, particula::kMaxThreads));
   auto* sets = validate->add_option("--set", a.opt.sets,
                                     "Override a case key in every validation case, after its level's own overrides, "
                                     "e.g. --set numerics.shifting_beta=0.02 (repeatable)");
@@ -176,6 +177,16 @@ CLI::App* add_schema(CLI::App& app, bool& json) {
   return schema;
 }
 
+/// Exit code 2 with the reason when a command that computes would run with OpenMP's default
+/// team (no --threads) and OMP_NUM_THREADS asks for a count outside [1, kMaxThreads].
+int check_default_threads(int threads) {
+  if (threads > 0) return 0;
+  const std::string why = particula::default_threads_problem();
+  if (why.empty()) return 0;
+  std::fprintf(stderr, "error: %s\n", why.c_str());
+  return 2;
+}
+
 int print_schema(bool json) {
   const std::string text = json ? particula::case_json_schema() : particula::case_reference_markdown();
   std::fwrite(text.data(), 1, text.size(), stdout);
@@ -222,6 +233,10 @@ int main(int argc, char** argv) {
   try {
     run_args.opt.plots = !run_args.no_plots;
     resume_args.opt.plots = !resume_args.no_plots;
+    const int threads = *run ? run_args.opt.threads : *resume ? resume_args.opt.threads
+                                                  : *validate_cmd ? validate_args.opt.threads : 0;
+    if (*run || *resume || *info || (*validate_cmd && validate_args.check_dir.empty()))
+      if (const int code = check_default_threads(threads)) return code;
     if (*run) return particula::run_command(run_args.case_file, run_args.opt);
     if (*resume) return particula::resume_command(resume_args.opt);
     if (*info) return particula::info_command(info_args.case_file, info_args.overrides, !info_args.no_timing);

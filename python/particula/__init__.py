@@ -13,13 +13,14 @@ bodies in viscous flow) as a module, and a reader of its run directories.
 Errors are the exceptions of particula.errors, one per exit code of the CLI, with its messages.
 """
 from . import errors
+from .arguments import MAX_THREADS
 from .commands import RunResult, load_case, resume, run_case
 from .errors import (CaseError, InputError, InternalError, Interrupted, IoFailure, NumericalFailure,
                      ParticulaError)
 from .reader import Run, Snapshot, Table, read_csv, read_pvd, read_run, read_vtp
 from .simulation import KIND_BOUNDARY, KIND_DUMMY, KIND_FLUID, Simulation
 
-__all__ = ["Simulation", "run_case", "resume", "load_case", "RunResult", "read_run", "read_csv", "read_vtp",
+__all__ = ["Simulation", "MAX_THREADS", "run_case", "resume", "load_case", "RunResult", "read_run", "read_csv", "read_vtp",
            "read_pvd", "Run", "Snapshot", "Table", "KIND_FLUID", "KIND_BOUNDARY", "KIND_DUMMY", "errors",
            "ParticulaError", "InputError", "CaseError", "NumericalFailure", "IoFailure", "Interrupted",
            "InternalError"]

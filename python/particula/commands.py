@@ -6,6 +6,7 @@ import tomllib
 
 from . import _core
 from . import errors
+from .arguments import threads_argument
 from .overrides import override_list
 
 
@@ -55,7 +56,7 @@ def load_case(case_file, overrides=None):
     return tomllib.loads(_core.resolved_case(os.fspath(case_file), override_list(overrides)))
 
 
-def run_case(case_file, out=None, overrides=None, *, threads=0, backend="cpu", overwrite=False, quiet=True,
+def run_case(case_file, out=None, overrides=None, *, threads=None, backend="cpu", overwrite=False, quiet=True,
              plots=True, check=True):
     """Runs a case into a run directory exactly as
     `particula run CASE --out OUT --set k=v ... [--threads N] [--backend B] [--overwrite]` does
@@ -64,23 +65,27 @@ def run_case(case_file, out=None, overrides=None, *, threads=0, backend="cpu", o
     out: the run directory (default runs/<case name>, relative to the working directory);
     overrides: {key: value} or ["key=value", ...] (particula.overrides.toml_value);
     quiet: no progress line (the runner's messages are printed when it is False or on failure);
-    plots: draw DIR/plots/*.png at the end (tools/plot_run.py), as the CLI does.
+    plots: draw DIR/plots/*.png at the end (tools/plot_run.py), as the CLI does;
+    threads: as Simulation's (None: OpenMP's default; else 1 .. particula.MAX_THREADS).
     A failed run raises the exception of its exit code (particula.errors; with check=False a
     numerical failure returns a RunResult with exit_code 3 instead). One run at a time per
     process: run cases in parallel in separate processes (concurrent.futures.ProcessPoolExecutor).
     """
+    threads = threads_argument(threads)
     sets = override_list(overrides)
     # The case is loaded first (the runner loads it again): a mistake in it raises CaseError with
     # the file, line and key as attributes, and the default run directory is known.
     name = load_case(case_file, sets)["name"]
     run_dir = os.fspath(out) if out is not None else os.path.join("runs", name)
-    code, text = _core.run_command(os.fspath(case_file), run_dir, sets, threads, backend, overwrite, quiet, plots)
+    code, text = _core.run_command(os.fspath(case_file), run_dir, sets, threads, backend,
+                                   overwrite, quiet, plots)
     return _finish(code, text, run_dir, quiet, check)
 
 
-def resume(run_dir, overrides=None, *, threads=0, backend="cpu", quiet=True, plots=True, check=True):
+def resume(run_dir, overrides=None, *, threads=None, backend="cpu", quiet=True, plots=True, check=True):
     """Continues a run from run_dir/checkpoint/state.bin exactly as `particula resume` does;
     overrides may change only time.end and output.* keys. Returns a RunResult."""
-    code, text = _core.resume_command(os.fspath(run_dir), override_list(overrides), threads, backend, quiet, plots)
+    code, text = _core.resume_command(os.fspath(run_dir), override_list(overrides), threads_argument(threads),
+                                      backend, quiet, plots)
     return _finish(code, text, os.fspath(run_dir), quiet, check)
 

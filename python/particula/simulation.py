@@ -12,11 +12,17 @@ Particle fields are NumPy *views* of the solver's own arrays (no copy), read-onl
   read: get the field again after each step.
 
 body_states(), wall_states(), body_index and wall_index are copies.
+
+One thread at a time: while a thread is in step(), run_to() or write_checkpoint(), any other use
+of the same Simulation from another thread raises RuntimeError (separate Simulations may step in
+parallel threads). After a NumericalFailure the Simulation refuses to step (NumericalFailure
+again): start again from a checkpoint.
 """
 import os
 import tomllib
 
 from . import _core
+from .arguments import seconds_argument, threads_argument
 from .overrides import override_list
 
 KIND_FLUID = 0
@@ -30,20 +36,24 @@ class Simulation:
 
     Simulation("cases/couette.toml", {"resolution.d0": 1e-4}) raises CaseError (a ValueError)
     with the CLI's message for a mistake in the file or an override. backend: "cpu" or "cuda";
-    threads: OpenMP threads for the whole process (0: as set before, by default all cores).
+    threads: OpenMP threads for the whole process, an integer in [1, particula.MAX_THREADS]
+    (None: as set before, by default OMP_NUM_THREADS or all cores; an OMP_NUM_THREADS beyond
+    that range raises InputError). A wrong type raises TypeError, a count out of range ValueError.
     """
 
-    def __init__(self, case_file, overrides=None, *, backend="cpu", threads=0):
-        self._sim = _core.Simulation.from_case(os.fspath(case_file), override_list(overrides), backend, threads)
+    def __init__(self, case_file, overrides=None, *, backend="cpu", threads=None):
+        self._sim = _core.Simulation.from_case(os.fspath(case_file), override_list(overrides), backend,
+                                               threads_argument(threads))
 
     @classmethod
-    def from_checkpoint(cls, file, overrides=None, *, backend="cpu", threads=0):
+    def from_checkpoint(cls, file, overrides=None, *, backend="cpu", threads=None):
         """A simulation restarted from a checkpoint (one written by write_checkpoint or a run's
         checkpoint/state.bin) exactly as `particula resume` restarts it: stepping it gives
         bitwise the state an uninterrupted simulation reaches. Only time.end and output.* may be
         overridden. A damaged checkpoint or one that does not fit its case raises InputError."""
         self = cls.__new__(cls)
-        self._sim = _core.Simulation.from_checkpoint(os.fspath(file), override_list(overrides), backend, threads)
+        self._sim = _core.Simulation.from_checkpoint(os.fspath(file), override_list(overrides), backend,
+                                                     threads_argument(threads))
         return self
 
     def write_checkpoint(self, file):
@@ -56,13 +66,16 @@ class Simulation:
     def step(self, max_dt=0.0):
         """One time step, of at most max_dt seconds when max_dt > 0; returns the step taken.
         Raises NumericalFailure (with time, step, particle_id, position) when the state is no
-        longer sound after it."""
-        return self._sim.step(max_dt)
+        longer sound after it, and from then on. max_dt: 0 (the stable step) or a finite
+        positive number that advances the time (else ValueError; not a number: TypeError)."""
+        return self._sim.step(seconds_argument("max_dt", max_dt))
 
     def run_to(self, t):
         """Steps until time t (s), the last step shortened to land on t; returns the number of
-        steps taken. Ctrl-C stops it between two steps (KeyboardInterrupt)."""
-        return self._sim.run_to(t)
+        steps taken (0 when t is the current time). Ctrl-C stops it between two steps
+        (KeyboardInterrupt). t: finite and not before the current time (else ValueError; not a
+        number: TypeError)."""
+        return self._sim.run_to(seconds_argument("t", t))
 
     @property
     def time(self):

@@ -24,10 +24,16 @@ class UsageError : public std::runtime_error {
 class StepFailure : public std::runtime_error {
  public:
   StepFailure(const Failure& f, real time, std::int64_t step);
+  /// The same failure with another message (a Simulation refusing to step after it).
+  StepFailure(const std::string& message, const StepFailure& cause);
   Failure failure;
   real time;
   std::int64_t step;
 };
+
+/// Throws UsageError unless `threads` is 0 (OpenMP's default team, itself checked:
+/// default_threads_problem) or within [1, kMaxThreads].
+void check_threads(int threads);
 
 /// Maps the library's exceptions to the classes of particula/errors.py.
 void register_errors(pybind11::module_& m);

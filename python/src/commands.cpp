@@ -90,6 +90,7 @@ std::pair<int, std::string> run(const fs::path& case_file, const fs::path& out,
   opt.overwrite = overwrite;
   opt.quiet = quiet;
   opt.plots = plots;
+  check_threads(threads);
   return captured([&] { return run_command(case_file, opt); });
 }
 
@@ -102,6 +103,7 @@ std::pair<int, std::string> resume(const fs::path& dir, const std::vector<std::s
   opt.backend = backend;
   opt.quiet = quiet;
   opt.plots = plots;
+  check_threads(threads);
   return captured([&] { return resume_command(opt); });
 }
 

@@ -20,6 +20,9 @@ StepFailure::StepFailure(const Failure& f, real t, std::int64_t s)
       time(t),
       step(s) {}
 
+StepFailure::StepFailure(const std::string& message, const StepFailure& cause)
+    : std::runtime_error(message), failure(cause.failure), time(cause.time), step(cause.step) {}
+
 namespace {
 
 /// Raises particula.errors.<name>(*args, **kwargs) as the current Python error.

@@ -1,13 +1,17 @@
 // particula._core.Simulation: a case loaded (load_case, with the --set overrides) and built
 // (build_scene) into a Solver, or a Solver restarted from a checkpoint as `particula resume` does;
-// stepped from Python; its particle fields exposed as NumPy views of the solver's arrays.
+// stepped from Python by one thread at a time; its particle fields exposed as NumPy views of the
+// solver's arrays.
+#include <fmt/format.h>
 #include <omp.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <type_traits>
 #include <utility>
@@ -31,14 +35,42 @@ namespace {
 static_assert(std::is_standard_layout_v<Vec2> && sizeof(Vec2) == 2 * sizeof(real));
 static_assert(sizeof(Kind) == sizeof(std::uint8_t));
 
-/// A case and its solver.
+/// A case and its solver, stepped by one thread at a time.
 struct Simulation {
   Case c;
   std::uint64_t case_hash = 0;  // the case identity every checkpoint of it carries
   std::unique_ptr<Solver> solver;
+  /// Held while a thread steps the solver (without the GIL) or writes its checkpoint.
+  mutable std::mutex busy;
+  /// The numerical failure that ended the last step; the state after it is not stepped further.
+  std::optional<StepFailure> failed;
 
+  /// The solver, for reading, when no other thread is stepping it (the GIL is held here, and a
+  /// step takes `busy` with the GIL held, so no step starts before the reading ends).
+  const Solver& idle() const {
+    if (!busy.try_lock()) throw std::runtime_error(busy_message());
+    busy.unlock();
+    return *solver;
+  }
   /// The particle state on the host (with the GPU backend, copied from the device when stale).
-  const Particles& particles() const { return std::as_const(*solver).particles(); }
+  const Particles& particles() const { return idle().particles(); }
+
+  static std::string busy_message() {
+    return "this Simulation is being stepped by another thread: step it from one thread at a time "
+           "(a Simulation per thread, or a lock around its use)";
+  }
+};
+
+/// `busy` held for one call (step, run_to, write_checkpoint); RuntimeError when another thread
+/// holds it.
+class Exclusive {
+ public:
+  explicit Exclusive(Simulation& sim) : lock_(sim.busy, std::try_to_lock) {
+    if (!lock_.owns_lock()) throw std::runtime_error(Simulation::busy_message());
+  }
+
+ private:
+  std::unique_lock<std::mutex> lock_;
 };
 
 /// Checks the backend before anything is built, as the CLI does; sets the OpenMP threads.
@@ -47,7 +79,7 @@ void prepare(const std::string& backend, int threads) {
   if (backend != "cpu" && backend != "cuda")
     throw UsageError("backend '" + backend + "': unknown (cpu or cuda)");
   if (backend == "cuda" && !cuda_backend_available(&why)) throw UsageError("backend cuda: " + why);
-  if (threads < 0) throw UsageError("threads must be 0 (all cores) or positive");
+  check_threads(threads);
   if (threads > 0) omp_set_num_threads(threads);
 }
 
@@ -95,7 +127,8 @@ std::unique_ptr<Simulation> from_checkpoint(const fs::path& file, const std::vec
 }
 
 /// The checkpoint `particula run` writes, without output marks (a Simulation writes no outputs).
-void write_simulation_checkpoint(const Simulation& sim, const fs::path& file) {
+void write_simulation_checkpoint(Simulation& sim, const fs::path& file) {
+  const Exclusive only(sim);
   const Solver& s = *sim.solver;
   const std::string toml = resolved_case_toml(sim.c);
   const real t = s.time();
@@ -105,25 +138,59 @@ void write_simulation_checkpoint(const Simulation& sim, const fs::path& file) {
                                         s.groups(), s.open_flux(), s.load_band_state()});
 }
 
+/// Raises the failure that ended an earlier step again: the state after it is not sound.
+void refuse_after_failure(const Simulation& sim) {
+  if (!sim.failed) return;
+  const StepFailure& f = *sim.failed;
+  throw StepFailure(fmt::format("this Simulation failed at t = {:.9g} s, step {} and steps no further (start "
+                                "again from a checkpoint: Simulation.from_checkpoint); the failure: {}",
+                                f.time, f.step, f.failure.what),
+                    f);
+}
+
 /// One step of at most max_dt (0: the stable step), or with `land_at` one that ends exactly at that
-/// time when it is limited by it; without the GIL; a failure is raised.
-real step(Simulation& sim, real max_dt, std::optional<real> land_at = std::nullopt) {
+/// time when it is limited by it; without the GIL (the caller holds `busy`); a failure is raised,
+/// and refused from then on.
+real step_held(Simulation& sim, real max_dt, std::optional<real> land_at = std::nullopt) {
+  refuse_after_failure(sim);
   std::optional<Failure> failure;
   {
     py::gil_scoped_release nogil;
     failure = land_at ? sim.solver->step_to(*land_at) : sim.solver->step(max_dt);
   }
-  if (failure) throw StepFailure(*failure, sim.solver->time(), sim.solver->step_count());
+  if (failure) {
+    sim.failed.emplace(*failure, sim.solver->time(), sim.solver->step_count());
+    throw *sim.failed;
+  }
   return sim.solver->last_dt();
 }
 
+/// Simulation.step(max_dt): max_dt is 0 (the stable step) or a positive, finite cap that
+/// advances the time.
+real step(Simulation& sim, real max_dt) {
+  const Exclusive only(sim);
+  const real t = sim.solver->time();
+  if (!std::isfinite(max_dt) || max_dt < 0)
+    throw py::value_error(fmt::format("step: max_dt = {} s: must be 0 (the stable step) or positive and finite",
+                                      max_dt));
+  if (max_dt > 0 && t + max_dt == t)
+    throw py::value_error(fmt::format("step: max_dt = {} s is too small to advance t = {} s", max_dt, t));
+  return step_held(sim, max_dt);
+}
+
 /// Steps until time t, the last step shortened to land on it (as the run loop lands on time.end);
-/// Ctrl-C is honoured between steps. Returns the number of steps taken.
+/// Ctrl-C is honoured between steps. Returns the number of steps taken. t is finite and not before
+/// the current time.
 std::int64_t run_to(Simulation& sim, real t) {
+  const Exclusive only(sim);
+  const real now = sim.solver->time();
+  if (!std::isfinite(t) || t < now)
+    throw py::value_error(
+        fmt::format("run_to: t = {} s: must be a finite time not before the current t = {} s", t, now));
   const std::int64_t first = sim.solver->step_count();
   const real eps = 1e-9 * std::abs(t);
   while (sim.solver->time() < t - eps) {
-    step(sim, 0, t);
+    step_held(sim, 0, t);
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
   }
   return sim.solver->step_count() - first;
@@ -157,7 +224,7 @@ py::array kind_view(const std::vector<Kind>& v, py::handle owner) {
 /// Per particle: the case index of the body (or wall, with `walls`) its boundary particle
 /// belongs to, -1 for fluid particles and for the other kind of group (a copy).
 py::array_t<std::int32_t> group_index(const Simulation& sim, bool walls) {
-  const std::vector<std::int32_t> index = particle_case_index(sim.particles(), sim.solver->groups(), walls);
+  const std::vector<std::int32_t> index = particle_case_index(sim.particles(), sim.idle().groups(), walls);
   py::array_t<std::int32_t> out(static_cast<py::ssize_t>(index.size()));
   std::copy(index.begin(), index.end(), out.mutable_data());
   return out;
@@ -202,7 +269,7 @@ const char* motion_name(Motion m) {
 /// the columns of bodies.csv (walls.csv) and the mass properties.
 py::dict group_states(const Simulation& sim, bool walls) {
   std::vector<const RigidGroup*> sel;
-  for (const auto& g : sim.solver->groups())
+  for (const auto& g : sim.idle().groups())
     if (g.is_wall == walls) sel.push_back(&g);
   auto column = [&](auto get) {
     std::vector<std::decay_t<decltype(get(*sel[0]))>> v;
@@ -248,7 +315,15 @@ void field(py::class_<Simulation>& cls, const char* name, Get get, const char* d
 
 }  // namespace
 
+void check_threads(int threads) {
+  if (threads < 0 || threads > kMaxThreads)
+    throw UsageError(fmt::format("threads = {}: must be 1 .. {} (or 0: OpenMP's default)", threads, kMaxThreads));
+  if (threads == 0)
+    if (const std::string why = default_threads_problem(); !why.empty()) throw UsageError(why);
+}
+
 void register_simulation(py::module_& m) {
+  m.attr("MAX_THREADS") = kMaxThreads;
   py::class_<Simulation> cls(m, "Simulation", "A case built into a solver (use particula.Simulation)");
   cls.def_static("from_case", &from_case, py::arg("case_file"), py::arg("overrides"), py::arg("backend"),
                  py::arg("threads"))
@@ -258,19 +333,19 @@ void register_simulation(py::module_& m) {
       .def(
           "step", [](Simulation& sim, real max_dt) { return step(sim, max_dt); }, py::arg("max_dt") = 0.0)
       .def("run_to", &run_to, py::arg("t"))
-      .def_property_readonly("time", [](const Simulation& s) { return s.solver->time(); })
-      .def_property_readonly("step_count", [](const Simulation& s) { return s.solver->step_count(); })
-      .def_property_readonly("dt", [](const Simulation& s) { return s.solver->last_dt(); })
-      .def_property_readonly("n_particles", [](const Simulation& s) { return s.solver->particle_count(); })
+      .def_property_readonly("time", [](const Simulation& s) { return s.idle().time(); })
+      .def_property_readonly("step_count", [](const Simulation& s) { return s.idle().step_count(); })
+      .def_property_readonly("dt", [](const Simulation& s) { return s.idle().last_dt(); })
+      .def_property_readonly("n_particles", [](const Simulation& s) { return s.idle().particle_count(); })
       .def_property_readonly("n_boundary", [](const Simulation& s) { return s.particles().n_boundary; })
-      .def_property_readonly("d0", [](const Simulation& s) { return s.solver->params().d0; })
-      .def_property_readonly("h", [](const Simulation& s) { return s.solver->params().h; })
+      .def_property_readonly("d0", [](const Simulation& s) { return s.idle().params().d0; })
+      .def_property_readonly("h", [](const Simulation& s) { return s.idle().params().h; })
       .def_property_readonly("backend",
-                             [](const Simulation& s) { return std::string(s.solver->backend_name()); })
+                             [](const Simulation& s) { return std::string(s.idle().backend_name()); })
       .def_property_readonly("case_toml", [](const Simulation& s) { return resolved_case_toml(s.c); })
       .def_property_readonly("guard_events",
                              [](const Simulation& s) {
-                               const SolverCounters& c = s.solver->counters();
+                               const SolverCounters& c = s.idle().counters();
                                py::dict d;
                                for (const auto& [name, count] : guard_events(c)) d[name] = count;
                                return d;

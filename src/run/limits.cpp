@@ -1,9 +1,11 @@
 #include "particula/run/limits.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #include "particula/case/error.hpp"
 
@@ -46,6 +48,34 @@ void check_case_size(const Case& c) {
   throw CaseError(c.source.string(), 0, "resolution.d0",
                   fmt::format("d0 = {:.6g} m gives about {:.3g} particles ({}); increase resolution.d0", c.d0,
                               e.total(), limit));
+}
+
+namespace {
+/// Whether OMP_NUM_THREADS, when set, starts with a count in [1, kMaxThreads] (a list such as
+/// "8,2" sets nested levels, which particula does not use). The OpenMP runtime itself only warns
+/// about a value it cannot parse and takes all cores.
+bool env_threads_valid(const std::string& text) {
+  const std::string first = text.substr(0, text.find(','));
+  const auto b = first.find_first_not_of(" \t"), e = first.find_last_not_of(" \t");
+  if (b == std::string::npos) return text.empty();
+  const std::string digits = first.substr(b, e - b + 1);
+  if (digits.size() > 4 || digits.find_first_not_of("0123456789") != std::string::npos) return false;
+  const int n = std::stoi(digits);
+  return n >= 1 && n <= kMaxThreads;
+}
+}  // namespace
+
+std::string default_threads_problem() {
+  // omp_get_max_threads() is the team size the runtime would start (OMP_NUM_THREADS, all cores,
+  // or what omp_set_num_threads set); the variable is checked as written too.
+  const char* env = std::getenv("OMP_NUM_THREADS");
+  const int team = omp_get_max_threads();
+  if (team >= 1 && team <= kMaxThreads && (env == nullptr || env_threads_valid(env))) return {};
+  return fmt::format(
+      "OMP_NUM_THREADS={}: not a thread count particula runs (1 .. {}, the most the OpenMP runtime starts "
+      "safely); set OMP_NUM_THREADS within it, unset it (all cores) or choose the count with --threads "
+      "(Python: threads=)",
+      env != nullptr ? std::string(env) : std::to_string(team), kMaxThreads);
 }
 
 }  // namespace particula
