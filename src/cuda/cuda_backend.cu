@@ -174,7 +174,7 @@ void CudaBackend::device_geometry(SolverCounters& cnt) {
                     [&](std::uint32_t j, real d2) {
                       jj[q] = j;
                       q += n;
-                      // two buffer particles do not set the step (Solver::open_min_distance)
+                      // two buffer particles do not set the step (Backend::skip_buffer_pairs_in_min_distance)
                       if (!(is_buffer(kinds[i]) && is_buffer(kinds[j]))) m = d2 < m ? d2 : m;
                     });
     dmin2[i] = m;

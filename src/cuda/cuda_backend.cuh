@@ -67,8 +67,8 @@ class CudaBackend final : public Backend {
   /// The neighbour list, volumes and geometry sweep on the device (refresh_geometry's work).
   void device_geometry(SolverCounters& cnt);
   const CellGrid& host_grid(const Particles& P) override;
-  /// The pairs of buffer particles stay in the device's min_distance (they were never left out
-  /// there: the buffers' particles are placed a lattice spacing apart).
+  /// Nothing to do: the device's list build already leaves the pairs of two buffer particles out
+  /// of min_distance (device_geometry).
   void skip_buffer_pairs_in_min_distance() override {}
   std::size_t pair_count() const override { return pairs_; }
   real min_distance() const override { return min_distance_; }
