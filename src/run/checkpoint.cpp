@@ -416,9 +416,10 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
 
 std::optional<std::string> why_not_checkpoint_target(const std::filesystem::path& file) {
   struct stat st {};
-  if (::lstat(file.c_str(), &st) != 0)
-    return errno == ENOENT ? std::nullopt
-                           : std::optional<std::string>(fmt::format("it cannot be examined ({})", std::strerror(errno)));
+  if (::lstat(file.c_str(), &st) != 0) {
+    if (errno == ENOENT) return std::nullopt;
+    return fmt::format("it cannot be examined ({})", std::strerror(errno));
+  }
   if (S_ISLNK(st.st_mode)) return "it is a symbolic link (particula replaces neither a link nor what it points to)";
   if (S_ISDIR(st.st_mode)) return "it is a directory";
   if (!S_ISREG(st.st_mode)) return "it is not a regular file (a device, a pipe or a socket)";

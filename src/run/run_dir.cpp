@@ -221,7 +221,8 @@ std::optional<std::string> foreign_entries(const fs::path& dir, const std::vecto
     const fs::path rel = it->path().lexically_relative(dir);
     const auto est = it->symlink_status(ec);
     const bool is_dir = fs::is_directory(est);
-    const bool ours = !fs::is_symlink(est) && (is_dir || fs::is_regular_file(est)) && case_run_entry(rel, is_dir, probes);
+    const bool ours = !fs::is_symlink(est) && (is_dir || fs::is_regular_file(est)) &&
+                      case_run_entry(rel, is_dir, probes);
     if (!ours) {
       if (is_dir) it.disable_recursion_pending();
       if (++n_foreign <= 5) foreign.push_back(rel.string() + (is_dir ? "/" : fs::is_symlink(est) ? " (a link)" : ""));

@@ -36,7 +36,8 @@ std::optional<long> pid_in(int fd) {
 
 /// Whether `fd` is the file at `path` now (not one renamed away or deleted since it was opened).
 bool same_file(int fd, const fs::path& path) {
-  struct stat open_st {}, path_st {};
+  struct stat open_st {
+  }, path_st{};
   if (::fstat(fd, &open_st) != 0 || ::lstat(path.c_str(), &path_st) != 0) return false;
   return open_st.st_dev == path_st.st_dev && open_st.st_ino == path_st.st_ino;
 }
@@ -46,18 +47,22 @@ int open_lock_file(const fs::path& dir) {
   const fs::path file = dir / kRunLock;
   struct stat st {};
   if (::lstat(file.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
-    throw RunDirRefused(fmt::format("'{}': the lock file '{}' is {}; particula does not open it", dir.string(),
-                                    file.string(), S_ISLNK(st.st_mode) ? "a symbolic link" : "not a regular file"));
+    throw RunDirRefused(fmt::format("'{}': the lock file '{}' is {}; particula does not open it",
+                                    dir.string(), file.string(),
+                                    S_ISLNK(st.st_mode) ? "a symbolic link" : "not a regular file"));
   const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
   if (fd < 0) {
     const int err = errno;
     if (err == ELOOP)
-      throw RunDirRefused(fmt::format("'{}': the lock file '{}' is a symbolic link", dir.string(), file.string()));
-    throw io::WriteError(fmt::format("cannot create the lock file '{}': {}", file.string(), std::strerror(err)));
+      throw RunDirRefused(
+          fmt::format("'{}': the lock file '{}' is a symbolic link", dir.string(), file.string()));
+    throw io::WriteError(
+        fmt::format("cannot create the lock file '{}': {}", file.string(), std::strerror(err)));
   }
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
-    throw RunDirRefused(fmt::format("'{}': the lock file '{}' is not a regular file", dir.string(), file.string()));
+    throw RunDirRefused(
+        fmt::format("'{}': the lock file '{}' is not a regular file", dir.string(), file.string()));
   }
   return fd;
 }
@@ -71,10 +76,11 @@ bool process_running(long pid) {
 }
 
 RunDirBusy::RunDirBusy(const fs::path& dir, std::optional<long> pid)
-    : RunDirRefused(fmt::format(
-          "run directory '{}' is in use by another particula process{}, which holds its lock {}: wait until it "
-          "has ended, or stop it, before running, resuming or overwriting this directory; nothing was changed",
-          dir.string(), pid ? fmt::format(", pid {}", *pid) : std::string(), (dir / kRunLock).string())) {}
+    : RunDirRefused(fmt::format("run directory '{}' is in use by another particula process{}, which holds "
+                                "its lock {}: wait until it has ended, or stop it, before running, resuming "
+                                "or overwriting this directory; nothing was changed",
+                                dir.string(), pid ? fmt::format(", pid {}", *pid) : std::string(),
+                                (dir / kRunLock).string())) {}
 
 RunDirLock::RunDirLock(const fs::path& dir) {
   const fs::path file = dir / kRunLock;
@@ -97,9 +103,10 @@ RunDirLock::RunDirLock(const fs::path& dir) {
       continue;
     }
     // The pid is for the messages of the processes refused; failing to write it changes nothing.
-    const std::string text = fmt::format("{}\n# particula process {} uses this run directory while it holds a lock "
-                                         "(flock) on this file\n",
-                                         static_cast<long>(::getpid()), static_cast<long>(::getpid()));
+    const std::string text = fmt::format(
+        "{}\n# particula process {} uses this run directory while it holds a lock "
+        "(flock) on this file\n",
+        static_cast<long>(::getpid()), static_cast<long>(::getpid()));
     if (::ftruncate(fd, 0) == 0) (void)!::pwrite(fd, text.data(), text.size(), 0);
     fd_ = fd;
     return;

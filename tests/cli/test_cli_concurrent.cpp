@@ -29,9 +29,10 @@ namespace {
 const fs::path kCouette = fs::path(PARTICULA_SOURCE_DIR) / "cases" / "couette.toml";
 
 /// `run` of a short coarse couette into `out`.
-std::vector<std::string> couette(const fs::path& out, const std::string& t_end, std::vector<std::string> extra = {}) {
-  std::vector<std::string> a{"run",       kCouette.string(), "--out", out.string(), "--quiet", "--no-plots",
-                             "--threads", "1",               "--set", "time.end=" + t_end};
+std::vector<std::string> couette(const fs::path& out, const std::string& t_end,
+                                 std::vector<std::string> extra = {}) {
+  std::vector<std::string> a{"run",        kCouette.string(), "--out", out.string(), "--quiet",
+                             "--no-plots", "--threads",       "1",     "--set",      "time.end=" + t_end};
   a.insert(a.end(), extra.begin(), extra.end());
   return a;
 }
@@ -118,7 +119,8 @@ TEST(CliConcurrent, AnOverwriteOfADirectoryBeingOverwrittenIsRefused) {
   ASSERT_EQ(cli(couette(run, "0.01")).code, 0);
   Child first(PARTICULA_BINARY, couette(run, kLong, {"--overwrite"}));
   // Its case.toml is in place once it has taken the old run's lock and swapped the new run in.
-  ASSERT_TRUE(wait_until([&] { return read_text(run / "case.toml").find("end = " + kLong) != std::string::npos; }));
+  ASSERT_TRUE(
+      wait_until([&] { return read_text(run / "case.toml").find("end = " + kLong) != std::string::npos; }));
   ASSERT_TRUE(stop(first));
   expect_refused_for(cli(couette(run, "0.03", {"--overwrite"})), first, run);
   first.signal(SIGCONT);

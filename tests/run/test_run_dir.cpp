@@ -61,8 +61,9 @@ TEST(RunDir, MarkerRoundTripAndRefusals) {
 }
 
 TEST(RunDir, NamesParticulaWrites) {
-  for (const char* f : {"case.toml", "log.txt", "probe_a.csv", ".particula-run", ".particula-lock", "checkpoint/state.bin",
-                        "checkpoint/failure.bin", "particles/step_00000012.vtp", "plots/bodies.png",
+  for (const char* f : {"case.toml", "log.txt", "probe_a.csv", ".particula-run", ".particula-lock",
+                        "checkpoint/state.bin", "checkpoint/failure.bin", "particles/step_00000012.vtp",
+                        "plots/bodies.png",
                         "checkpoint/state.bin.tmp.123", ".resume/bodies.csv", ".resume/particles/step_1.vtp"})
     EXPECT_TRUE(particula_run_entry(f, false)) << f;
   for (const char* d : {"particles", "checkpoint", "plots", ".resume"}) EXPECT_TRUE(particula_run_entry(d, true)) << d;
