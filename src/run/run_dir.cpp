@@ -284,7 +284,7 @@ int rename_noreplace(const fs::path& from, const fs::path& to) {
 
 /// Swaps `a` and `b` atomically (renameat2 RENAME_EXCHANGE). Returns 0 or an errno (EINVAL:
 /// the file system cannot).
-int exchange(const fs::path& a, const fs::path& b) {
+int swap_entries(const fs::path& a, const fs::path& b) {
   return ::renameat2(AT_FDCWD, a.c_str(), AT_FDCWD, b.c_str(), RENAME_EXCHANGE) == 0 ? 0 : errno;
 }
 
@@ -384,7 +384,7 @@ void RunDirectory::replace(const fs::path& parent, const RunMarker& marker) {
   const fs::path staged = stage(parent, marker);
   const fs::path aside = free_sibling(parent, dir_, "old");
   std::error_code ec;
-  if (const int err = exchange(staged, dir_); err == 0) {  // `staged` holds the old run now
+  if (const int err = swap_entries(staged, dir_); err == 0) {  // `staged` holds the old run now
     staging_.clear();
     own_dir_ = true;
     fs::rename(staged, aside, ec);
@@ -456,7 +456,7 @@ std::optional<std::string> RunDirectory::commit() {
 
 std::optional<std::string> RunDirectory::put_back() {
   std::error_code ec;
-  if (exchange(aside_, dir_) == 0) {  // `aside_` holds the new run now
+  if (swap_entries(aside_, dir_) == 0) {  // `aside_` holds the new run now
     fs::remove_all(aside_, ec);
     return std::nullopt;
   }
