@@ -58,7 +58,10 @@ class Simulation:
 
     def write_checkpoint(self, file):
         """Writes the complete state (the format of checkpoint/state.bin) to `file`, atomically,
-        creating its directory. Raises IoFailure when it cannot be written."""
+        creating its directory. `file` is a new file or a particula checkpoint, which is replaced;
+        anything else there (a file that is not a checkpoint, a symbolic link, a directory, a
+        device) is left alone and IoFailure names it. Raises IoFailure when it cannot be
+        written."""
         self._sim.write_checkpoint(os.fspath(file))
 
     # ---- time stepping

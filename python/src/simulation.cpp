@@ -18,6 +18,7 @@
 
 #include "bindings.hpp"
 #include "particula/case/load.hpp"
+#include "particula/io/error.hpp"
 #include "particula/run/checkpoint.hpp"
 #include "particula/run/limits.hpp"
 #include "particula/run/observers.hpp"
@@ -126,8 +127,11 @@ std::unique_ptr<Simulation> from_checkpoint(const fs::path& file, const std::vec
   return sim;
 }
 
-/// The checkpoint `particula run` writes, without output marks (a Simulation writes no outputs).
+/// The checkpoint `particula run` writes, without output marks (a Simulation writes no outputs),
+/// to a new file or over a particula checkpoint, never over anything else (why_not_checkpoint_target).
 void write_simulation_checkpoint(Simulation& sim, const fs::path& file) {
+  if (const auto why = why_not_checkpoint_target(file))
+    throw io::WriteError(fmt::format("not writing a checkpoint to '{}': {}", file.string(), *why));
   const Exclusive only(sim);
   const Solver& s = *sim.solver;
   const std::string toml = resolved_case_toml(sim.c);

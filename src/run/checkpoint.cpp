@@ -1,9 +1,14 @@
 #include "particula/run/checkpoint.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -407,6 +412,27 @@ void write_checkpoint(const std::filesystem::path& file, const CheckpointView& c
 
 Checkpoint read_checkpoint(const std::filesystem::path& file) {
   return decode_checkpoint(io::read_file(file), file);
+}
+
+std::optional<std::string> why_not_checkpoint_target(const std::filesystem::path& file) {
+  struct stat st {};
+  if (::lstat(file.c_str(), &st) != 0) {
+    if (errno == ENOENT) return std::nullopt;
+    return fmt::format("it cannot be examined ({})", std::strerror(errno));
+  }
+  if (S_ISLNK(st.st_mode)) return "it is a symbolic link (particula replaces neither a link nor what it points to)";
+  if (S_ISDIR(st.st_mode)) return "it is a directory";
+  if (!S_ISREG(st.st_mode)) return "it is not a regular file (a device, a pipe or a socket)";
+  char head[sizeof kMagic] = {};
+  ssize_t n = -1;
+  if (const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK); fd >= 0) {
+    n = ::read(fd, head, sizeof head);
+    ::close(fd);
+  }
+  if (n != static_cast<ssize_t>(sizeof head) || std::memcmp(head, kMagic, sizeof head) != 0)
+    return "it is not a particula checkpoint (it does not start with the checkpoint's magic number); particula "
+           "replaces only a checkpoint";
+  return std::nullopt;
 }
 
 }  // namespace particula

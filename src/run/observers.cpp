@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "particula/analytic/solutions.hpp"
+#include "particula/run/run_dir.hpp"
 #include "particula/solver/interpolation.hpp"
 
 namespace particula {
@@ -141,10 +142,10 @@ ProbeWriter::ProbeWriter(const std::filesystem::path& run_dir, const ProbeSpec& 
     : spec_(spec),
       case_(c),
       points_(probe_points(spec)),
-      csv_(run_dir / ("probe_" + spec.name + ".csv"), probe_columns(c), probe_units(c)),
+      csv_(run_dir / probe_csv_name(spec.name), probe_columns(c), probe_units(c)),
       stop_(std::move(stop)) {
   if (spec.kind == ProbeKind::Line)
-    flow_.emplace(run_dir / ("flow_" + spec.name + ".csv"), kFlowColumns, kFlowUnits);
+    flow_.emplace(run_dir / flow_csv_name(spec.name), kFlowColumns, kFlowUnits);
 }
 
 double flow_rate_of(Vec2 from, Vec2 to, const std::vector<Vec2>& v) {

@@ -189,8 +189,8 @@ RunOutputs::RunOutputs(const fs::path& dir, const Case& c, const std::vector<Out
   for (const auto& p : c.probes) {
     probes_.push_back(std::make_unique<ProbeWriter>(scratch_, p, c, stop));
     std::vector<CsvRelay*> relays;  // probe_<name>.csv and, for a line, flow_<name>.csv
-    std::vector<std::string> files{"probe_" + p.name + ".csv"};
-    if (p.kind == ProbeKind::Line) files.push_back("flow_" + p.name + ".csv");
+    std::vector<std::string> files{probe_csv_name(p.name)};
+    if (p.kind == ProbeKind::Line) files.push_back(flow_csv_name(p.name));
     for (const std::string& file : files) {
       csv_relays_.push_back(std::make_unique<CsvRelay>(scratch_ / file, dir / file, mark("probe:" + p.name)));
       relays.push_back(csv_relays_.back().get());

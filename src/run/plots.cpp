@@ -63,6 +63,13 @@ std::filesystem::path plot_script() { return std::filesystem::path(PARTICULA_SOU
 
 }  // namespace
 
+std::vector<std::string> plot_file_names(const std::vector<std::string>& probes) {
+  std::vector<std::string> names{"flow_rates.png", "bodies.png", "coefficients.png", "snapshot_fields.png"};
+  for (const std::string& p : probes)
+    for (const char* what : {"profiles", "error", "points"}) names.push_back(fmt::format("probe_{}_{}.png", p, what));
+  return names;
+}
+
 std::string plot_python() {
   std::error_code ec;
   return std::filesystem::exists("/usr/bin/python3", ec) ? "/usr/bin/python3" : "python3";

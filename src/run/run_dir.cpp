@@ -1,27 +1,24 @@
 #include "particula/run/run_dir.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
-#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <toml++/toml.h>
 
 #include "particula/io/atomic_file.hpp"
+#include "particula/run/plots.hpp"
 
 namespace particula {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-/// Whether process `pid` may still be running (then its temporary files are left alone).
-bool process_running(long pid) {
-  if (pid <= 0) return false;
-  if (pid == static_cast<long>(::getpid())) return true;
-  return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
-}
 
 bool starts_with(std::string_view s, std::string_view prefix) { return s.substr(0, prefix.size()) == prefix; }
 bool ends_with(std::string_view s, std::string_view suffix) {
@@ -31,13 +28,55 @@ bool all_digits(std::string_view s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
-/// A file name particula writes at the top of a run directory (or of its .resume scratch).
-bool top_file(std::string_view name) {
-  for (const char* known : {kRunMarker, "case.toml", "summary.json", "log.txt", "bodies.csv", "walls.csv",
+/// A file name particula writes at the top of every run directory (or of its .resume scratch).
+bool fixed_top_file(std::string_view name) {
+  for (const char* known : {kRunMarker, kRunLock, "case.toml", "summary.json", "log.txt", "bodies.csv", "walls.csv",
                             "coefficients.csv", "open_boundaries.csv", "particles.pvd"})
     if (name == known) return true;
-  return (starts_with(name, "probe_") && ends_with(name, ".csv") && name.size() > 10) ||
-         (starts_with(name, "flow_") && ends_with(name, ".csv") && name.size() > 9);
+  return false;
+}
+
+/// A file name particula writes at the top of a run directory: with `probes`, only those of
+/// the case's probes; without, any probe's.
+bool top_file(const std::string& name, const std::vector<std::string>* probes) {
+  if (fixed_top_file(name)) return true;
+  if (!probes)
+    return (starts_with(name, "probe_") && ends_with(name, ".csv") && name.size() > 10) ||
+           (starts_with(name, "flow_") && ends_with(name, ".csv") && name.size() > 9);
+  return std::any_of(probes->begin(), probes->end(),
+                     [&](const std::string& p) { return name == probe_csv_name(p) || name == flow_csv_name(p); });
+}
+
+/// An image particula draws into plots/: with `probes`, only those of the case; without, any.
+bool plot_file(const std::string& name, const std::vector<std::string>* probes) {
+  if (!probes) return ends_with(name, ".png") && name.size() > 4;
+  const std::vector<std::string> names = plot_file_names(*probes);
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+/// particula_run_entry (probes == nullptr) and case_run_entry.
+bool run_entry(const fs::path& rel, bool directory, const std::vector<std::string>* probes) {
+  std::vector<std::string> parts;
+  for (const auto& c : rel) parts.push_back(c.string());
+  if (!parts.empty() && parts.front() == ".resume") {  // the scratch of a resumed run mirrors a run directory
+    if (parts.size() == 1) return directory;
+    parts.erase(parts.begin());
+  }
+  if (parts.empty()) return false;
+  std::string name = parts.back();
+  if (!directory)
+    if (const auto temp = io::atomic_temp_target(name)) name = temp->target;
+  if (parts.size() == 1) {
+    if (directory) return name == "particles" || name == "checkpoint" || name == "plots";
+    return top_file(name, probes);
+  }
+  if (parts.size() != 2 || directory) return false;
+  const std::string_view n = name;
+  if (parts[0] == "particles")
+    return starts_with(n, "step_") && ends_with(n, ".vtp") && all_digits(n.substr(5, n.size() - 9));
+  if (parts[0] == "checkpoint") return n == "state.bin" || n == "failure.bin";
+  if (parts[0] == "plots") return plot_file(name, probes);
+  return false;
 }
 
 std::string hex(std::uint64_t v) { return fmt::format("{:016x}", v); }
@@ -139,29 +178,64 @@ std::optional<RunMarker> read_marker(const fs::path& dir) {
 
 // ---- what particula writes ---------------------------------------------------------------------
 
-bool particula_run_entry(const fs::path& rel, bool directory) {
-  std::vector<std::string> parts;
-  for (const auto& c : rel) parts.push_back(c.string());
-  if (!parts.empty() && parts.front() == ".resume") {  // the scratch of a resumed run mirrors a run directory
-    if (parts.size() == 1) return directory;
-    parts.erase(parts.begin());
-  }
-  if (parts.empty()) return false;
-  std::string name = parts.back();
-  if (!directory)
-    if (const auto temp = io::atomic_temp_target(name)) name = temp->target;
-  if (parts.size() == 1) {
-    if (directory) return name == "particles" || name == "checkpoint" || name == "plots";
-    return top_file(name);
-  }
-  if (parts.size() != 2 || directory) return false;
-  const std::string_view n = name;
-  if (parts[0] == "particles")
-    return starts_with(n, "step_") && ends_with(n, ".vtp") && all_digits(n.substr(5, n.size() - 9));
-  if (parts[0] == "checkpoint") return n == "state.bin" || n == "failure.bin";
-  if (parts[0] == "plots") return ends_with(n, ".png") && n.size() > 4;
-  return false;
+std::string probe_csv_name(const std::string& probe) { return "probe_" + probe + ".csv"; }
+std::string flow_csv_name(const std::string& probe) { return "flow_" + probe + ".csv"; }
+
+bool particula_run_entry(const fs::path& rel, bool directory) { return run_entry(rel, directory, nullptr); }
+
+bool case_run_entry(const fs::path& rel, bool directory, const std::vector<std::string>& probes) {
+  return run_entry(rel, directory, &probes);
 }
+
+std::optional<std::vector<std::string>> run_probe_names(const fs::path& dir) {
+  std::error_code ec;
+  const fs::path file = dir / "case.toml";
+  if (!fs::is_regular_file(fs::symlink_status(file, ec))) return std::nullopt;
+  try {
+    const toml::table doc = toml::parse(io::read_file(file), file.string());
+    std::vector<std::string> names;
+    if (const toml::array* probes = doc["probe"].as_array())
+      for (const toml::node& p : *probes) {
+        const auto name = p.as_table() ? (*p.as_table())["name"].value<std::string>() : std::nullopt;
+        if (!name) return std::nullopt;
+        names.push_back(*name);
+      }
+    return names;
+  } catch (const std::exception&) {  // toml::parse_error, io::IoError
+    return std::nullopt;
+  }
+}
+
+namespace {
+
+/// The entries of run directory `dir` that its run did not write (case_run_entry with `probes`),
+/// the first five named ("notes.txt", "analysis/", "x (a link)"), or why it cannot be listed.
+std::optional<std::string> foreign_entries(const fs::path& dir, const std::vector<std::string>& probes) {
+  std::vector<std::string> foreign;
+  std::size_t n_foreign = 0;
+  std::error_code ec;
+  fs::recursive_directory_iterator it(dir, fs::directory_options::none, ec), end;
+  if (ec) return fmt::format("it cannot be listed ({})", ec.message());
+  for (; it != end; it.increment(ec)) {
+    if (ec) return fmt::format("it cannot be listed ({})", ec.message());
+    const fs::path rel = it->path().lexically_relative(dir);
+    const auto est = it->symlink_status(ec);
+    const bool is_dir = fs::is_directory(est);
+    const bool ours = !fs::is_symlink(est) && (is_dir || fs::is_regular_file(est)) &&
+                      case_run_entry(rel, is_dir, probes);
+    if (!ours) {
+      if (is_dir) it.disable_recursion_pending();
+      if (++n_foreign <= 5) foreign.push_back(rel.string() + (is_dir ? "/" : fs::is_symlink(est) ? " (a link)" : ""));
+    }
+  }
+  if (n_foreign == 0) return std::nullopt;
+  std::string list;
+  for (const auto& f : foreign) list += (list.empty() ? "" : ", ") + f;
+  if (n_foreign > foreign.size()) list += fmt::format(" and {} more", n_foreign - foreign.size());
+  return list;
+}
+
+}  // namespace
 
 std::optional<std::string> why_not_replaceable(const fs::path& dir_in) {
   const fs::path dir = normalized(dir_in);
@@ -184,84 +258,179 @@ std::optional<std::string> why_not_replaceable(const fs::path& dir_in) {
                        "directories it created: remove it yourself or choose another --out",
                        kRunMarker);
   if (marker->kind != MarkedKind::Run) return "it is a validation directory, not a run directory";
-  // Everything in it must be something particula writes.
-  std::vector<std::string> foreign;
-  std::size_t n_foreign = 0;
-  fs::recursive_directory_iterator it(dir, fs::directory_options::none, ec), end;
-  if (ec) return fmt::format("it cannot be listed ({})", ec.message());
-  for (; it != end; it.increment(ec)) {
-    if (ec) return fmt::format("it cannot be listed ({})", ec.message());
-    const fs::path rel = it->path().lexically_relative(dir);
-    const auto est = it->symlink_status(ec);
-    const bool is_dir = fs::is_directory(est);
-    const bool ours = !fs::is_symlink(est) && (is_dir || fs::is_regular_file(est)) && particula_run_entry(rel, is_dir);
-    if (!ours) {
-      if (is_dir) it.disable_recursion_pending();
-      if (++n_foreign <= 5) foreign.push_back(rel.string() + (is_dir ? "/" : fs::is_symlink(est) ? " (a link)" : ""));
-    }
-  }
-  if (n_foreign > 0) {
-    std::string list;
-    for (const auto& f : foreign) list += (list.empty() ? "" : ", ") + f;
-    if (n_foreign > foreign.size()) list += fmt::format(" and {} more", n_foreign - foreign.size());
-    return fmt::format("it holds files particula did not write ({}): move them out first", list);
-  }
+  // Everything in it must be a file its run writes: the names of its case, not every name that
+  // looks like particula's.
+  const std::optional<std::vector<std::string>> probes = run_probe_names(dir);
+  if (const auto foreign = foreign_entries(dir, probes ? *probes : std::vector<std::string>{}))
+    return fmt::format("it holds files its run did not write ({}){}: move them out first", *foreign,
+                       probes ? "" : "; its case.toml is missing or unreadable, so only particula's fixed file "
+                                     "names count as the run's");
   return std::nullopt;
 }
 
 // ---- RunDirectory ------------------------------------------------------------------------------
 
-RunDirectory::RunDirectory(fs::path dir_in, bool overwrite, const RunMarker& marker) : dir_(normalized(dir_in)) {
+namespace {
+
+/// Renames `from` to `to` unless `to` exists (renameat2 RENAME_NOREPLACE; where the file system
+/// lacks it, checked first). Returns 0 or an errno (EEXIST: `to` exists).
+int rename_noreplace(const fs::path& from, const fs::path& to) {
+  if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0) return 0;
+  if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP) return errno;
   std::error_code ec;
-  const fs::path parent = dir_.has_parent_path() ? dir_.parent_path() : fs::path();  // empty: the working directory
-  // Old runs left aside by a particula killed while replacing them.
-  const std::string aside_prefix = fmt::format(".{}.old.", dir_.filename().string());
+  if (fs::exists(fs::symlink_status(to, ec))) return EEXIST;
+  return std::rename(from.c_str(), to.c_str()) == 0 ? 0 : errno;
+}
+
+/// Swaps `a` and `b` atomically (renameat2 RENAME_EXCHANGE). Returns 0 or an errno (EINVAL:
+/// the file system cannot).
+int swap_entries(const fs::path& a, const fs::path& b) {
+  return ::renameat2(AT_FDCWD, a.c_str(), AT_FDCWD, b.c_str(), RENAME_EXCHANGE) == 0 ? 0 : errno;
+}
+
+bool cannot_exchange(int err) { return err == EINVAL || err == ENOSYS || err == ENOTSUP; }
+
+/// A hidden sibling `.NAME.<what>.<pid>[.k]` of `dir` in `parent` that does not exist yet.
+fs::path free_sibling(const fs::path& parent, const fs::path& dir, const char* what) {
+  std::error_code ec;
+  const std::string base = fmt::format(".{}.{}.{}", dir.filename().string(), what, static_cast<long>(::getpid()));
+  fs::path p = parent / base;
+  for (int k = 1; fs::exists(fs::symlink_status(p, ec)); ++k) p = parent / fmt::format("{}.{}", base, k);
+  return p;
+}
+
+/// The process that uses run directory `dir` (run_dir_user), when `dir` is a directory itself
+/// (not a link to one: that is refused as a link).
+std::optional<long> user_of(const fs::path& dir) {
+  std::error_code ec;
+  return fs::is_directory(fs::symlink_status(dir, ec)) ? run_dir_user(dir) : std::nullopt;
+}
+
+[[noreturn]] void cannot_create(const fs::path& dir, int err) {
+  throw io::WriteError(fmt::format("cannot create run directory '{}': {}", shown(dir), std::strerror(err)));
+}
+
+}  // namespace
+
+void RunDirectory::note_left_behind(const fs::path& parent) {
+  // Run directories left by a particula killed while creating (.NAME.new.<pid>) or replacing
+  // (.NAME.old.<pid>) NAME.
+  std::error_code ec;
   const fs::path listed = parent.empty() ? fs::path(".") : parent;
-  if (fs::is_directory(listed, ec))
-    for (const auto& e : fs::directory_iterator(listed, ec)) {
+  if (!fs::is_directory(listed, ec)) return;
+  for (const auto& e : fs::directory_iterator(listed, ec))
+    for (const char* what : {"old", "new"}) {
+      const std::string prefix = fmt::format(".{}.{}.", dir_.filename().string(), what);
       const std::string name = e.path().filename().string();
-      if (!starts_with(name, aside_prefix)) continue;
-      std::string_view rest = std::string_view(name).substr(aside_prefix.size());
+      if (!starts_with(name, prefix)) continue;
+      std::string_view rest = std::string_view(name).substr(prefix.size());
       rest = rest.substr(0, rest.find('.'));
       long pid = 0;
       std::from_chars(rest.data(), rest.data() + rest.size(), pid);
       if (all_digits(rest) && !process_running(pid))
-        notes_.push_back(fmt::format("note: '{}' holds a run directory that an earlier 'particula run --overwrite' was "
-                                     "replacing when it was killed; it is left as it is (move it back or delete it)",
-                                     shown(parent / e.path().filename())));
+        notes_.push_back(fmt::format("note: '{}' holds a run directory that an earlier 'particula run' was "
+                                     "{} when it was killed; it is left as it is (move it back or delete it)",
+                                     shown(parent / e.path().filename()),
+                                     what == std::string("old") ? "replacing" : "creating or replacing"));
     }
+}
 
-  if (fs::exists(fs::symlink_status(dir_, ec))) {
-    const auto why = why_not_replaceable(dir_);
-    if (!overwrite) {
-      if (why)
+fs::path RunDirectory::stage(const fs::path& parent, const RunMarker& marker) {
+  fs::path staged;
+  for (;;) {
+    staged = free_sibling(parent, dir_, "new");
+    std::error_code ec;
+    if (fs::create_directory(staged, ec)) break;  // false without an error: another process made it first
+    if (ec) cannot_create(dir_, ec.value());
+  }
+  staging_ = staged;
+  lock_ = RunDirLock(staged);
+  write_marker(staged, marker);
+  return staged;
+}
+
+bool RunDirectory::create(const fs::path& parent, const RunMarker& marker) {
+  std::error_code ec;
+  created_ = missing_directories(dir_);
+  if (!created_.empty() && created_.front() == dir_) created_.erase(created_.begin());  // the parents only
+  if (!parent.empty()) {
+    fs::create_directories(parent, ec);
+    if (ec) cannot_create(dir_, ec.value());
+  }
+  const fs::path staged = stage(parent, marker);
+  const int err = rename_noreplace(staged, dir_);
+  if (err == EEXIST || err == ENOTEMPTY) {  // another process made it meanwhile: it is not this run's
+    fs::remove_all(staged, ec);
+    staging_.clear();
+    lock_.release();
+    return false;
+  }
+  if (err != 0) cannot_create(dir_, err);
+  staging_.clear();
+  own_dir_ = true;
+  return true;
+}
+
+void RunDirectory::replace(const fs::path& parent, const RunMarker& marker) {
+  auto refuse = [&](const std::string& why) {
+    throw RunDirRefused(fmt::format("--overwrite: not replacing '{}': {}", shown(dir_), why));
+  };
+  if (const auto why = why_not_replaceable(dir_)) {
+    if (const auto user = user_of(dir_)) throw RunDirBusy(dir_, user);
+    refuse(*why);
+  }
+  old_lock_ = RunDirLock(dir_);  // before anything is moved; RunDirBusy when another particula has it
+  if (const auto why = why_not_replaceable(dir_)) refuse(*why);  // looked at again under the lock
+  const fs::path staged = stage(parent, marker);
+  const fs::path aside = free_sibling(parent, dir_, "old");
+  std::error_code ec;
+  if (const int err = swap_entries(staged, dir_); err == 0) {  // `staged` holds the old run now
+    staging_.clear();
+    own_dir_ = true;
+    fs::rename(staged, aside, ec);
+    aside_ = ec ? staged : aside;
+    return;
+  } else if (!cannot_exchange(err)) {
+    throw io::WriteError(fmt::format("cannot replace the run directory '{}': {}", shown(dir_), std::strerror(err)));
+  }
+  // Without RENAME_EXCHANGE: the old run is moved aside, then the new one moved in.
+  fs::rename(dir_, aside, ec);
+  if (ec)
+    throw io::WriteError(fmt::format("cannot move the old run directory '{}' aside to '{}': {}", shown(dir_),
+                                     shown(aside), ec.message()));
+  if (const int err = rename_noreplace(staged, dir_); err != 0) {
+    const bool back = rename_noreplace(aside, dir_) == 0;
+    if (back) cannot_create(dir_, err);
+    throw RunDirRefused(fmt::format("another process created '{}' while this run was replacing it; the previous "
+                                    "run is kept in '{}'",
+                                    shown(dir_), shown(aside)));
+  }
+  staging_.clear();
+  own_dir_ = true;
+  aside_ = aside;
+}
+
+RunDirectory::RunDirectory(fs::path dir_in, bool overwrite, const RunMarker& marker) : dir_(normalized(dir_in)) {
+  const fs::path parent = dir_.has_parent_path() ? dir_.parent_path() : fs::path();  // empty: the working directory
+  note_left_behind(parent);
+  try {
+    for (int attempt = 0;; ++attempt) {
+      std::error_code ec;
+      if (!fs::exists(fs::symlink_status(dir_, ec))) {
+        if (create(parent, marker)) return;
+        if (attempt < 2) continue;  // made by another process meanwhile: look at it again
+      }
+      if (overwrite) {
+        replace(parent, marker);
+        return;
+      }
+      if (const auto user = user_of(dir_)) throw RunDirBusy(dir_, user);
+      if (const auto why = why_not_replaceable(dir_))
         throw RunDirRefused(fmt::format("'{}' already exists, and --overwrite would not replace it either: {}",
                                         shown(dir_), *why));
       throw RunDirRefused(
           fmt::format("run directory '{}' already exists (use --overwrite to replace it)", shown(dir_)));
     }
-    if (why) throw RunDirRefused(fmt::format("--overwrite: not replacing '{}': {}", shown(dir_), *why));
-    fs::path aside = parent / fmt::format("{}{}", aside_prefix, static_cast<long>(::getpid()));
-    for (int k = 1; fs::exists(fs::symlink_status(aside, ec)); ++k)
-      aside = parent / fmt::format("{}{}.{}", aside_prefix, static_cast<long>(::getpid()), k);
-    fs::rename(dir_, aside, ec);
-    if (ec)
-      throw io::WriteError(fmt::format("cannot move the old run directory '{}' aside to '{}': {}", shown(dir_),
-                                       shown(aside), ec.message()));
-    aside_ = aside;
-  } else {
-    created_ = missing_directories(dir_);
-  }
-  fs::create_directories(dir_, ec);
-  if (ec) {
-    const std::string why = ec.message();
-    rollback();
-    throw io::WriteError(fmt::format("cannot create run directory '{}': {}", shown(dir_), why));
-  }
-  if (created_.empty() && aside_.empty()) created_.push_back(dir_);  // created by someone else meanwhile: ours now
-  if (!aside_.empty()) created_ = {dir_};
-  try {
-    write_marker(dir_, marker);
   } catch (...) {
     rollback();
     throw;
@@ -278,9 +447,23 @@ std::optional<std::string> RunDirectory::commit() {
   if (aside_.empty()) return std::nullopt;
   std::error_code ec;
   fs::remove_all(aside_, ec);
+  old_lock_.release();
   if (ec)
     return fmt::format("could not delete the old run directory moved aside to '{}': {}; delete it yourself",
                        shown(aside_), ec.message());
+  return std::nullopt;
+}
+
+std::optional<std::string> RunDirectory::put_back() {
+  std::error_code ec;
+  if (swap_entries(aside_, dir_) == 0) {  // `aside_` holds the new run now
+    fs::remove_all(aside_, ec);
+    return std::nullopt;
+  }
+  fs::remove_all(dir_, ec);  // the new run (this process holds its lock)
+  if (const int err = rename_noreplace(aside_, dir_); err != 0)
+    return fmt::format("could not put the old run directory back from '{}' to '{}': {}", shown(aside_), shown(dir_),
+                       std::strerror(err));
   return std::nullopt;
 }
 
@@ -288,15 +471,17 @@ std::optional<std::string> RunDirectory::rollback() {
   if (committed_ || rolled_back_) return std::nullopt;
   rolled_back_ = true;
   std::error_code ec;
-  // The new directory holds only what this run wrote; the parents it created are left empty.
-  if (!created_.empty()) fs::remove_all(created_.front(), ec);
-  for (std::size_t k = 1; k < created_.size(); ++k) fs::remove(created_[k], ec);  // only if empty
-  if (aside_.empty()) return std::nullopt;
-  fs::rename(aside_, dir_, ec);
-  if (ec)
-    return fmt::format("could not put the old run directory back from '{}' to '{}': {}", shown(aside_), shown(dir_),
-                       ec.message());
-  return std::nullopt;
+  if (!staging_.empty()) fs::remove_all(staging_, ec);  // never became the run directory
+  std::optional<std::string> warning;
+  if (!aside_.empty()) {
+    warning = put_back();
+  } else if (own_dir_) {
+    fs::remove_all(dir_, ec);  // it holds only what this run wrote
+  }
+  for (const fs::path& p : created_) fs::remove(p, ec);  // the parents this created, only if empty
+  lock_.release();
+  old_lock_.release();
+  return warning;
 }
 
 // ---- temporary files ---------------------------------------------------------------------------

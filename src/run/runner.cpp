@@ -453,9 +453,8 @@ bool resume_overrides_allowed(const std::vector<std::string>& overrides) {
   return true;
 }
 
-/// The marker of a run directory that can be resumed: it exists, `particula run` made it and it
-/// has a checkpoint (`file`). Says why not and returns nothing otherwise.
-std::optional<RunMarker> resumable_run_marker(const fs::path& run_dir, const fs::path& file) {
+/// The marker of a run directory `particula run` made. Says why not and returns nothing otherwise.
+std::optional<RunMarker> resumable_run_marker(const fs::path& run_dir) {
   std::error_code ec;
   if (!fs::is_directory(run_dir, ec)) {
     std::fprintf(stderr, "error: run directory '%s' does not exist\n", run_dir.string().c_str());
@@ -476,12 +475,29 @@ std::optional<RunMarker> resumable_run_marker(const fs::path& run_dir, const fs:
         run_dir.string().c_str(), kRunMarker);
     return std::nullopt;
   }
-  if (!fs::exists(file, ec)) {
-    std::fprintf(stderr, "error: '%s' has no checkpoint to resume from ('%s' is missing)\n",
-                 run_dir.string().c_str(), file.string().c_str());
-    return std::nullopt;
-  }
   return marker;
+}
+
+/// Takes the run directory's lock for the whole resume: 0, or the exit code (2: in use; 4: I/O).
+int lock_for_resume(const fs::path& run_dir, RunDirLock& lock) {
+  try {
+    lock = RunDirLock(run_dir);
+  } catch (const RunDirRefused& e) {
+    return bad_input(e);
+  } catch (const io::WriteError& e) {
+    std::fprintf(stderr, "error: I/O failure: %s\n", e.what());
+    return kExitIoFailure;
+  }
+  return 0;
+}
+
+/// Whether the run directory has its checkpoint `file` (says so when not).
+bool has_checkpoint(const fs::path& run_dir, const fs::path& file) {
+  std::error_code ec;
+  if (fs::exists(file, ec)) return true;
+  std::fprintf(stderr, "error: '%s' has no checkpoint to resume from ('%s' is missing)\n", run_dir.string().c_str(),
+               file.string().c_str());
+  return false;
 }
 
 /// Reads the checkpoint `file` of the run the marker describes into `k`, and its case (with the
@@ -543,8 +559,11 @@ int resume_command(const ResumeOptions& opt) {
   if (!backend_usable(opt.backend)) return 2;
   SignalGuard signals;
   const fs::path file = checkpoint_path(opt.run_dir);
-  const std::optional<RunMarker> marker = resumable_run_marker(opt.run_dir, file);
+  const std::optional<RunMarker> marker = resumable_run_marker(opt.run_dir);
   if (!marker) return 2;
+  RunDirLock lock;  // held until the resume has ended
+  if (const int code = lock_for_resume(opt.run_dir, lock)) return code;
+  if (!has_checkpoint(opt.run_dir, file)) return 2;
   Session s;
   Checkpoint k;
   if (!read_resume_state(opt, file, *marker, s, k)) return 2;

@@ -1,6 +1,7 @@
 // The user's files and runs through the command line: --overwrite replaces only a run
-// directory particula made (never '.', '..', a directory or file of the user's, a link) and keeps
-// the old run until the new one has started; a file-system failure is exit code 4, logged, and
+// directory particula made holding only the files its case writes (never '.', '..', a directory
+// or file of the user's, a link, a file that merely looks like an output) and keeps the old run
+// until the new one has started; a file-system failure is exit code 4, logged, and
 // the run resumes from its last checkpoint; temporary files of a killed particula are removed on
 // resume; SIGTERM during a long output ends the run within a second with a checkpoint, and the
 // resumed run writes what the interrupted one gave up; validate and generate write only into
@@ -103,6 +104,25 @@ TEST(CliFiles, OverwriteRefusesWhatParticulaDidNotWrite) {
   const auto plain = cli(couette((work / "thesis").string(), "0.01"));
   EXPECT_EQ(plain.code, 2) << plain.output;
   EXPECT_NE(plain.output.find("not a particula run directory"), std::string::npos) << plain.output;
+}
+
+TEST(CliFiles, OverwriteKeepsFilesThatOnlyLookLikeOutputs) {
+  // Names of particula's patterns that this case never writes are the user's: the overwrite is
+  // refused, naming them, and nothing changes; once they are moved out it goes ahead.
+  const fs::path dir = fresh_dir("files_lookalike");
+  const fs::path run = dir / "run";
+  ASSERT_EQ(cli(couette(run.string(), "0.01")).code, 0);
+  fs::create_directories(run / "plots");
+  const std::vector<std::string> mine{"plots/figure_for_paper.png", "probe_mine.csv", "flow_mine.csv"};
+  for (const auto& f : mine) write_text(run / f, "mine");
+  const auto before = tree(dir);
+  const auto r = cli(couette(run.string(), "0.02", {"--overwrite"}));
+  EXPECT_EQ(r.code, 2) << r.output;
+  for (const auto& f : mine) EXPECT_NE(r.output.find(f), std::string::npos) << r.output;
+  EXPECT_TRUE(tree(dir) == before) << r.output;
+  for (const auto& f : mine) fs::remove(run / f);
+  const auto again = cli(couette(run.string(), "0.02", {"--overwrite"}));
+  EXPECT_EQ(again.code, 0) << again.output;
 }
 
 TEST(CliFiles, OverwriteReplacesARunDirectoryAndLeavesNothingAside) {

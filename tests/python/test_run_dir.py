@@ -1,6 +1,9 @@
 """particula.run_case / resume (the CLI's runner) and particula.read_run on what they write."""
 import os
+import re
+import signal
 import subprocess
+import time
 
 import numpy as np
 import pytest
@@ -181,3 +184,53 @@ def test_numerical_failure_of_a_run(particula, tmp_path):
     assert run.summary["overrides"] == override_list(sets) == ["resolution.d0=0.005", "fluid.c=0.05",
                                                                "time.dt_max=0.001"]
     assert run.snapshots.times[-1] == run.summary["end_time"]  # the final snapshot is written
+
+
+def test_a_run_directory_in_use_is_refused(particula, tmp_path):
+    # A CLI run holds its run directory (stopped while it does): run_case --overwrite and resume
+    # from Python are refused with the directory and its pid, and the run then ends as if alone.
+    out = tmp_path / "couette"
+    first = subprocess.Popen([BINARY, "run", case("couette"), "--out", str(out), "--set", "time.end=0.2",
+                              "--no-plots", "--quiet", "--threads", "1"])
+    deadline = time.monotonic() + 60
+    while not (out / ".particula-run").exists():
+        assert time.monotonic() < deadline and first.poll() is None
+        time.sleep(0.001)
+    os.kill(first.pid, signal.SIGSTOP)
+    try:
+        _, status = os.waitpid(first.pid, os.WUNTRACED)
+        assert os.WIFSTOPPED(status), "the first run ended before it was stopped"
+        with pytest.raises(particula.InputError, match="pid %d" % first.pid) as e:
+            particula.run_case(case("couette"), out, COUETTE, plots=False, overwrite=True)
+        assert str(out) in str(e.value) and e.value.exit_code == 2
+        with pytest.raises(particula.InputError, match="pid %d" % first.pid):
+            particula.resume(out, {"time.end": 0.3}, plots=False)
+    finally:
+        os.kill(first.pid, signal.SIGCONT)
+    assert first.wait(timeout=300) == 0
+    assert particula.read_run(out).summary["status"] == "completed"
+
+
+def test_write_checkpoint_replaces_only_a_checkpoint(particula, tmp_path):
+    sim = particula.Simulation(case("hydrostatic"), HYDROSTATIC)
+    target = tmp_path / "state.bin"
+    sim.write_checkpoint(target)  # a new file
+    sim.step()
+    sim.write_checkpoint(target)  # over a checkpoint
+    assert particula.Simulation.from_checkpoint(target).step_count == 1
+    mine = tmp_path / "mycase.toml"
+    mine.write_text('name = "mine"\n')
+    link = tmp_path / "link.bin"
+    os.symlink(target, link)
+    dangling = tmp_path / "dangling.bin"
+    os.symlink(tmp_path / "nowhere.bin", dangling)
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    for path, why in ((mine, "not a particula checkpoint"), (link, "symbolic link"), (dangling, "symbolic link"),
+                      (fifo, "not a regular file")):
+        with pytest.raises(particula.IoFailure, match=re.escape(str(path)) + ".*" + why):
+            sim.write_checkpoint(path)
+    assert mine.read_text() == 'name = "mine"\n'
+    assert os.readlink(link) == str(target) and particula.Simulation.from_checkpoint(link).step_count == 1
+    assert not (tmp_path / "nowhere.bin").exists()
+    assert sorted(os.listdir(tmp_path)) == ["dangling.bin", "fifo", "link.bin", "mycase.toml", "state.bin"]

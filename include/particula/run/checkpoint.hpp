@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -100,6 +101,11 @@ void write_checkpoint(const std::filesystem::path& file, const CheckpointView& c
 void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c);
 /// Reads and checks a checkpoint file. Throws io::IoError naming the file.
 Checkpoint read_checkpoint(const std::filesystem::path& file);
+/// Why a checkpoint must not be written to `file`: it exists and is a symbolic link, not a
+/// regular file (a directory, a device, a pipe), or a regular file that is not a particula
+/// checkpoint (it does not start with the checkpoint's magic number, whatever its version);
+/// nullopt when `file` does not exist or is a checkpoint.
+std::optional<std::string> why_not_checkpoint_target(const std::filesystem::path& file);
 
 // ---- the field lists ---------------------------------------------------------------------------
 // ONE list per struct, used for writing (const object) and reading (non-const object). When you

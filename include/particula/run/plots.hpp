@@ -4,10 +4,16 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace particula {
 
 enum class PlotOutcome { Drawn, NoMatplotlib, NoScript, Failed, Interrupted };
+
+/// The images tools/plot_run.py may draw into DIR/plots for a case with the probes `probes`:
+/// probe_<name>_profiles.png, probe_<name>_error.png and probe_<name>_points.png of each probe,
+/// flow_rates.png, bodies.png, coefficients.png and snapshot_fields.png.
+std::vector<std::string> plot_file_names(const std::vector<std::string>& probes);
 
 /// The Python interpreter used for plots: /usr/bin/python3 when it exists (Debian's, where
 /// python3-matplotlib installs), else the first python3 on the PATH.

@@ -2,11 +2,18 @@
 //
 // `run` writes a marker file (kRunMarker) into every run directory it creates, naming particula,
 // the marker's format, the kind of directory and the run's case identity (case_identity_hash).
-// `run --overwrite` replaces only a directory that holds such a marker and nothing particula
-// does not write; never `.`, the working directory or one of its parents, a plain file or a
-// symbolic link. The old run is renamed aside (a hidden sibling `.NAME.old.<pid>`) while the new
-// one starts, and deleted only once the new run has written its initial state and a checkpoint;
-// if the new run fails before that, the old one is put back (RunDirectory::rollback).
+// `run`, `resume` and `run --overwrite` hold an advisory lock (flock on kRunLock, RunDirLock) on
+// the run directory for as long as they use it; a second particula that wants the same directory
+// is refused (RunDirBusy, exit code 2) with the pid of the one that holds it. A new run directory
+// is made under a hidden sibling `.NAME.new.<pid>` (marker written, lock held) and renamed to NAME
+// only when NAME does not exist, so it never appears without its marker and lock.
+// `run --overwrite` replaces only a directory that holds a run marker and nothing but the files
+// its case writes (the fixed names, its probes' files and plots: case_run_entry); never `.`, the
+// working directory or one of its parents, a plain file or a symbolic link. It takes the old
+// directory's lock first, checks it again under the lock, and swaps the new directory in
+// (renameat2 RENAME_EXCHANGE); the old run is kept aside (a hidden sibling `.NAME.old.<pid>`) and
+// deleted only once the new run has written its initial state and a checkpoint; if the new run
+// fails before that, the old one is put back (RunDirectory::rollback).
 // `resume` compares the marker's case identity with the checkpoint's, and removes temporary
 // files that a killed particula left (remove_stale_temp_files).
 #pragma once
@@ -24,6 +31,10 @@ namespace particula {
 inline constexpr const char* kRunMarker = ".particula-run";
 /// Format of the marker file; a marker of another format is not recognised.
 inline constexpr int kRunMarkerFormat = 1;
+/// The lock file of a run directory: locked (flock) by the particula that uses the directory,
+/// holding that process's pid while it is locked (emptied when released). It stays in the
+/// directory: removing it would let two processes lock two different files.
+inline constexpr const char* kRunLock = ".particula-lock";
 
 enum class MarkedKind { Run, Validation };
 
@@ -38,31 +49,87 @@ class RunDirRefused : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Another particula process uses the run directory (holds its lock): exit code 2, nothing was
+/// changed. The message names the directory and, when known, the other process's pid.
+class RunDirBusy : public RunDirRefused {
+ public:
+  RunDirBusy(const std::filesystem::path& dir, std::optional<long> pid);
+};
+
+/// Whether process `pid` may still be running.
+bool process_running(long pid);
+
+/// The exclusive advisory lock (flock) of a run directory, DIR/.particula-lock, held until
+/// release() or destruction. The lock file is opened close-on-exec, so that no child process
+/// (the plotting script) keeps it.
+class RunDirLock {
+ public:
+  RunDirLock() = default;
+  /// Locks DIR/.particula-lock, creating it when missing, and writes this process's pid into it.
+  /// Throws RunDirBusy when another process (or another lock in this one) holds it,
+  /// RunDirRefused when the lock file is a symbolic link or not a regular file, io::WriteError
+  /// when it cannot be created or locked.
+  explicit RunDirLock(const std::filesystem::path& dir);
+  ~RunDirLock() { release(); }
+  RunDirLock(RunDirLock&& other) noexcept : fd_(other.fd_) { other.fd_ = -1; }
+  RunDirLock& operator=(RunDirLock&& other) noexcept;
+  RunDirLock(const RunDirLock&) = delete;
+  RunDirLock& operator=(const RunDirLock&) = delete;
+
+  bool held() const { return fd_ >= 0; }
+  /// Empties the lock file and unlocks it.
+  void release();
+
+ private:
+  int fd_ = -1;
+};
+
+/// The pid in DIR's lock file when that process is running, else nullopt. Takes no lock (it
+/// names the user of a directory that is refused for another reason, e.g. without --overwrite).
+std::optional<long> run_dir_user(const std::filesystem::path& dir);
+
 /// Writes DIR/.particula-run. Throws io::WriteError.
 void write_marker(const std::filesystem::path& dir, const RunMarker& marker);
 /// The marker of `dir`: nullopt when it has none (or `dir` is not a directory); throws
 /// io::IoError naming the file when the marker is unreadable or of another format.
 std::optional<RunMarker> read_marker(const std::filesystem::path& dir);
 
-/// Whether `rel`, a path relative to a run directory, names a file or directory particula
-/// writes there (case.toml, log.txt, particles/step_00000010.vtp, checkpoint/state.bin, plots/
-/// images, the marker, their temporary files `<name>.tmp.<pid>`, ...). `directory`: whether it
-/// is a directory.
+/// The files a probe named `probe` writes at the top of its run directory: probe_<probe>.csv and,
+/// for a line probe, flow_<probe>.csv.
+std::string probe_csv_name(const std::string& probe);
+std::string flow_csv_name(const std::string& probe);
+
+/// Whether `rel`, a path relative to a run directory, has the name of a file or directory
+/// particula writes there (case.toml, log.txt, probe_*.csv, particles/step_00000010.vtp,
+/// checkpoint/state.bin, plots/ images, the marker and lock, their temporary files
+/// `<name>.tmp.<pid>`, ...), whatever the case. `directory`: whether it is a directory.
 bool particula_run_entry(const std::filesystem::path& rel, bool directory);
 
+/// As particula_run_entry, for the run of a case with the probes `probes`: only the files that
+/// case writes (the fixed names, probe_<name>.csv and flow_<name>.csv of its probes, their plots
+/// and the fixed plots), not everything that matches a pattern (a user's probe_mine.csv or
+/// plots/figure.png is not the run's).
+bool case_run_entry(const std::filesystem::path& rel, bool directory, const std::vector<std::string>& probes);
+
+/// The probe names of the case in run directory `dir` (its case.toml); nullopt when case.toml is
+/// missing or unreadable.
+std::optional<std::vector<std::string>> run_probe_names(const std::filesystem::path& dir);
+
 /// Why --overwrite must not remove `dir` (not a directory, a symbolic link, the working
-/// directory or one of its parents, no marker, files particula did not write); nullopt when it
-/// may. `dir` must exist.
+/// directory or one of its parents, no marker, files its run did not write: case_run_entry with
+/// run_probe_names); nullopt when it may. `dir` must exist.
 std::optional<std::string> why_not_replaceable(const std::filesystem::path& dir);
 
 /// The run directory of a `run`: created (or, with overwrite, replacing an old run directory)
-/// with its marker. Until commit(), the destructor undoes everything (rollback()).
+/// with its marker, and locked (RunDirLock) for the object's lifetime. Until commit(), the
+/// destructor undoes everything (rollback()).
 class RunDirectory {
  public:
   /// Creates `dir` with `marker`. When `dir` exists: without `overwrite`, or when
-  /// why_not_replaceable() gives a reason, throws RunDirRefused (nothing changed); otherwise the
-  /// old directory is renamed aside and a new one is created. Throws io::WriteError when the
-  /// file system fails.
+  /// why_not_replaceable() gives a reason, throws RunDirRefused (nothing changed); when another
+  /// particula uses it, RunDirBusy; otherwise, holding the old directory's lock, the new one
+  /// takes its place and the old one is kept aside. Throws io::WriteError when the file system
+  /// fails.
   RunDirectory(std::filesystem::path dir, bool overwrite, const RunMarker& marker);
   ~RunDirectory();
   RunDirectory(const RunDirectory&) = delete;
@@ -84,9 +151,20 @@ class RunDirectory {
   std::optional<std::string> rollback();
 
  private:
-  std::filesystem::path dir_, aside_;
-  std::vector<std::filesystem::path> created_;  // directories created, innermost first
+  void note_left_behind(const std::filesystem::path& parent);
+  /// Makes `.NAME.new.<pid>` with the marker and the held lock; returns it.
+  std::filesystem::path stage(const std::filesystem::path& parent, const RunMarker& marker);
+  /// A new `dir_` (parents created as needed); false when another process made `dir_` meanwhile.
+  bool create(const std::filesystem::path& parent, const RunMarker& marker);
+  /// Puts the new run in place of the old one, kept aside, under the old one's lock.
+  void replace(const std::filesystem::path& parent, const RunMarker& marker);
+  std::optional<std::string> put_back();
+
+  std::filesystem::path dir_, aside_, staging_;
+  std::vector<std::filesystem::path> created_;  // parent directories created, innermost first
   std::vector<std::string> notes_;
+  RunDirLock lock_, old_lock_;  // the new run directory's lock; the old one's while replacing
+  bool own_dir_ = false;        // dir_ is this run's new directory
   bool committed_ = false, rolled_back_ = false;
 };
 
