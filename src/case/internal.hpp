@@ -90,6 +90,9 @@ void check_arc_overlap(const Case& c, const LoadContext& ctx);
 void check_turning_walls(const Case& c, const LoadContext& ctx);
 void check_region_closed(const Case& c, const LoadContext& ctx);
 void check_spin_up(const Case& c, const LoadContext& ctx);
+/// The fluid sides of closed chains of walls agree (wall_regions.cpp): nested loops turn opposite
+/// ways, and a loop inside no other has the kind of the region it stands in on its outside.
+void check_wall_regions(const Case& c, const LoadContext& ctx);
 
 /// Checks of bodies (body_checks.cpp), run by run_cross_checks in this order: valid polygons
 /// and holes, density of free bodies, schedules, fixed bodies without velocity, size against d0,

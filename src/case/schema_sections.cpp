@@ -84,7 +84,16 @@ std::vector<SectionSpec> make_sections() {
           "edge, overlaps another on the same line, or comes within d0/2 of a body (a fixed body may "
           "stand on a wall with a flat side); a wall with a velocity slides along itself, so it must run "
           "along a periodic axis and share no end point with another wall; a turning wall stays in the "
-          "domain and shares end points only with walls turning with it."),
+          "domain and shares end points only with walls turning with it. The fluid sides of closed "
+          "chains (loops joined head to tail, not through a periodic side) must agree: every region "
+          "between walls is fluid or solid by all the walls round it. So a loop directly inside another "
+          "turns the other way: in a container (counter-clockwise, fluid inside) obstacles are "
+          "clockwise (fluid outside), and inside an obstacle only a pocket of fluid, counter-clockwise "
+          "(a thick ring: a clockwise circle round a counter-clockwise one); a loop inside no other "
+          "has outside it the kind of region the other walls (chains ending on the domain's edge or "
+          "closing through a periodic side) give it there, an obstacle in a channel's fluid, and "
+          "without such walls the outermost loops are all containers or all obstacles. A box of walls "
+          "round a counter-clockwise circle is refused, naming both chains."),
       array_section(
           "probe", &Case::probes,
           "Probes, one [[probe]] table each: velocity and pressure interpolated at a line of points or "

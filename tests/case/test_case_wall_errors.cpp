@@ -71,12 +71,12 @@ to = [0.0, 0.06]
 TEST(CaseWallErrors, ShippedCasesAndFixturesLoad) {
   const std::filesystem::path source = PARTICULA_SOURCE_DIR;
   int n = 0;
-  for (const auto& e : std::filesystem::directory_iterator(source / "cases")) {
+  for (const auto& e : std::filesystem::recursive_directory_iterator(source / "cases")) {
     if (e.path().extension() != ".toml") continue;
     EXPECT_NO_THROW(load_case(e.path())) << e.path();
     ++n;
   }
-  EXPECT_GE(n, 9);
+  EXPECT_GE(n, 30);
   EXPECT_NO_THROW(load_case(source / "tests" / "data" / "bodies.toml"));
   EXPECT_NO_THROW(load(kBox));
   EXPECT_NO_THROW(load(kBaffle));
@@ -274,13 +274,13 @@ TEST(CaseWallErrors, BodyWithinHalfD0OfAWall) {
 }
 
 TEST(CaseWallErrors, BodyNearAWallAcrossThePeriodicBoundary) {
-  // A closed plate whose left side is at x = 0.001; the disc near x = 0.02 reaches across the
-  // periodic boundary x = 0.02 to within 4e-5 m of it.
+  // A closed plate (clockwise: the fluid outside) whose left side is at x = 0.001; the disc near
+  // x = 0.02 reaches across the periodic boundary x = 0.02 to within 4e-5 m of it.
   const std::string text = periodic_x_channel() +
-                           "\n[[wall]]\nname = \"plate_left\"\nfrom = [0.001, 0.031]\nto = [0.001, 0.029]\n"
-                           "\n[[wall]]\nname = \"plate_under\"\nfrom = [0.001, 0.029]\nto = [0.005, 0.029]\n"
-                           "\n[[wall]]\nname = \"plate_right\"\nfrom = [0.005, 0.029]\nto = [0.005, 0.031]\n"
-                           "\n[[wall]]\nname = \"plate_top\"\nfrom = [0.005, 0.031]\nto = [0.001, 0.031]\n"
+                           "\n[[wall]]\nname = \"plate_left\"\nfrom = [0.001, 0.029]\nto = [0.001, 0.031]\n"
+                           "\n[[wall]]\nname = \"plate_under\"\nfrom = [0.005, 0.029]\nto = [0.001, 0.029]\n"
+                           "\n[[wall]]\nname = \"plate_right\"\nfrom = [0.005, 0.031]\nto = [0.005, 0.029]\n"
+                           "\n[[wall]]\nname = \"plate_top\"\nfrom = [0.001, 0.031]\nto = [0.005, 0.031]\n"
                            "\n[[body]]\nshape = \"circle\"\ncenter = [0.01971, 0.03]\nradius = 0.00125\n"
                            "density = 1000\n";
   expect_error(
@@ -406,4 +406,53 @@ TEST(CaseWallErrors, SpinUpNeedsOneTurningCircularContainer) {
                "exact = \"spin_up\"", "a full circle turning counter-clockwise");
   expect_error(spin + "\n[[body]]\nshape = \"circle\"\ncenter = [0.01, 0.03]\nradius = 0.002\nmotion = \"fixed\"\n",
                "validation.exact", "exact = \"spin_up\"", "needs no bodies");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Closed chains whose fluid sides contradict each other.
+
+namespace {
+
+/// A full circle of radius r round (0.01, 0.03): counter-clockwise (fluid inside) or clockwise.
+std::string circle(const std::string& name, double r, bool fluid_inside) {
+  return fmt::format("\n[[wall]]\ncenter = [0.01, 0.03]\nname = \"{}\"\nshape = \"arc\"\nradius = {}\n"
+                     "start_angle = {}\nend_angle = {}\n",
+                     name, r, fluid_inside ? "0.0" : "6.283185307179586", fluid_inside ? "6.283185307179586" : "0.0");
+}
+
+}  // namespace
+
+TEST(CaseWallErrors, NestedChainsTurnOppositeWays) {
+  // A box (fluid inside) round an obstacle (fluid outside), and a pocket of fluid in a thick ring.
+  EXPECT_NO_THROW(load(kBox + circle("obstacle", 0.008, false)));
+  EXPECT_NO_THROW(load(kBox + circle("ring_out", 0.008, false) + circle("ring_in", 0.004, true)));
+  // A box round a circular container: between them fluid by the box, solid by the circle.
+  const std::string two_containers = kBox + circle("drum", 0.008, true);
+  expect_error(two_containers, "wall[4].center", "center = [0.01, 0.03]\nname = \"drum\"",
+               "the closed chain of wall 'drum' (wall[4]) (fluid inside: counter-clockwise) lies inside the closed "
+               "chain of wall 'bottom' (wall[0]), wall 'right' (wall[1]), wall 'top' (wall[2]), wall 'left' "
+               "(wall[3]) (fluid inside: counter-clockwise): the region between them would be fluid by the outer "
+               "chain and solid by the inner one");
+  EXPECT_EQ(error_of(two_containers).file(), kFile);
+  // An obstacle inside an obstacle: between them solid by the outer, fluid by the inner.
+  expect_error(kBox + circle("outer", 0.008, false) + circle("inner", 0.004, false), "wall[5].center",
+               "center = [0.01, 0.03]\nname = \"inner\"", "would be solid by the outer chain and fluid by the inner one");
+  // The nearest enclosing chain decides: a container in the ring's pocket is inside two chains.
+  expect_error(kBox + circle("ring_out", 0.008, false) + circle("ring_in", 0.006, true) + circle("cup", 0.003, true),
+               "wall[6].center", "center = [0.01, 0.03]\nname = \"cup\"", "lies inside the closed chain of wall 'ring_in' (wall[5])");
+}
+
+TEST(CaseWallErrors, OutermostChainsAgreeWithTheRegionRoundThem) {
+  // In a channel (walls closing through the periodic sides) an obstacle, not a container.
+  EXPECT_NO_THROW(load(periodic_x_channel() + circle("obstacle", 0.008, false)));
+  expect_error(periodic_x_channel() + circle("drum", 0.008, true), "wall[2].center", "center = [0.01, 0.03]\nname = \"drum\"",
+               "stands in the region that the walls ending on the domain's edge or closing through a periodic side "
+               "make fluid");
+  // Without other walls: two drums, or two obstacles, side by side, but not one of each.
+  const std::string drum = with(circle("left", 0.004, true), "center = [0.01, 0.03]", "center = [0.01, 0.015]");
+  const std::string obstacle = with(circle("right", 0.004, false), "center = [0.01, 0.03]", "center = [0.01, 0.045]");
+  EXPECT_NO_THROW(load(kBase + drum + with(drum, "0.015", "0.045")));
+  expect_error(kBase + drum + obstacle, "wall[1].center", "center = [0.01, 0.045]\nname = \"right\"",
+               "stand side by side, inside no other chain: the region round them would be solid by the first and "
+               "fluid by the second");
 }
