@@ -1,16 +1,18 @@
 #!/usr/bin/env python3
 """Draws the plots of a particula run directory into DIR/plots/.
 
-  plot_run.py DIR
+  plot_run.py DIR [--format png|svg|pdf]
 
 Every figure's title names the case, its resolution (d0 and particles across the first body,
-or across the domain) and, for a run that failed or was interrupted, where it stopped.
+or across the domain), the run's --set overrides (summary.json) and, for a run that failed or
+was interrupted, where it stopped.
 - probe_<name>.csv: for a line probe, velocity profiles at up to 8 written times (with the exact
   solution where the case declares one, and the profile error in time); for a probe at points,
   the velocity at each point in time;
 - flow_<name>.csv: the flow rate through each line probe in time (flow_rates.png);
 - bodies.csv: position, angle and velocity of every moving body (a fixed body has none to show)
-  and the hydrodynamic force on every body, against reference data named in the case; each
+  and the hydrodynamic force on every body, against the published reference of the case, drawn
+  only when the run's physics is that of the shipped case it belongs to (plot_references.py); each
   panel spans at least a physically meaningful range (a position one body diameter, an angle
   0.1 rad, a velocity a tenth of the largest speed) and states the range of a smaller drift;
 - coefficients.csv: drag and lift coefficients in time (coefficients.png);
@@ -23,6 +25,7 @@ import importlib.util
 import math
 import os
 import sys
+import textwrap
 
 try:
     import matplotlib
@@ -34,7 +37,13 @@ except ImportError:  # pragma: no cover - reported to the user by the caller
     sys.exit(4)
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-REFERENCE_DIR = os.path.join(ROOT, "reference")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_references  # noqa: E402  (next to this script)
+
+# The image formats (particula plot --format; src/run/plots.cpp's plot_formats()), the first the default.
+FORMATS = ("png", "svg", "pdf")
+# The format save() writes, set by main().
+OUTPUT = {"format": FORMATS[0]}
 
 
 def load_reader():
@@ -47,16 +56,6 @@ def load_reader():
 
 
 reader = load_reader()
-
-# Published reference curves per case name: (file, x column, y column, bodies.csv column, label).
-REFERENCES = {
-    "falling_cylinder": [("glowinski2001_settling_vy.csv", "t", "vy", "vy", "Glowinski et al. 2001 (FEM)"),
-                         ("zhang2019_settling_y.csv", "t", "y", "y", "Zhang et al. 2019 (FPM)")],
-    "shear_migration": [("feng2002_migration_y.csv", "t", "y", "y", "Feng & Michaelides 2002 (LBM)")],
-    "two_cylinders_shear": [("hashemi2012_two_cylinders_vx.csv", "t", "vx", "vx", "Hashemi et al. 2012")],
-    "dkt": [("hashemi2012_dkt_vy.csv", "t", "vy", "vy", "Hashemi et al. 2012")],
-}
-
 
 # ---- the case: sizes, names, titles ---------------------------------------------------------------
 
@@ -107,8 +106,14 @@ def resolution_text(case):
     return "d0 = %.3g m, %s" % (d0, across)
 
 
+def overrides_text(summary):
+    """'--set body.0.density=1500 --set time.end=0.5' from summary.json's overrides, or ''."""
+    return " ".join("--set %s" % o for o in summary.get("overrides") or [])
+
+
 def title(run, what):
-    """'<what>: case '<name>'' and below it 'd0 = ..., N particles across ...[, FAILED at t = ...]'."""
+    """'<what>: case '<name>'' and below it 'd0 = ..., N particles across ...[, FAILED at t = ...]'
+    and, for a run with overrides, a line '--set key=value ...'."""
     case, summary = run.case, run.summary or {}
     parts = [resolution_text(case)]
     status = summary.get("status", "")
@@ -118,11 +123,14 @@ def title(run, what):
         parts.append("interrupted at t = %.4g s" % summary.get("end_time", 0))
     elif status and status != "completed":
         parts.append("%s at t = %.4g s" % (status, summary.get("end_time", 0)))
-    return "%s: case '%s'\n%s" % (what, case.get("name", "") or run.dir, ", ".join(p for p in parts if p))
+    text = "%s: case '%s'\n%s" % (what, case.get("name", "") or run.dir, ", ".join(p for p in parts if p))
+    overrides = overrides_text(summary)
+    return text + "\n" + overrides if overrides else text
 
 
-def save(fig, out, name):
-    fig.savefig(os.path.join(out, name), dpi=110)
+def save(fig, out, stem):
+    """Writes the figure as out/<stem>.<format> (the format main() was given)."""
+    fig.savefig(os.path.join(out, "%s.%s" % (stem, OUTPUT["format"])), dpi=110)
     plt.close(fig)
 
 
@@ -197,7 +205,7 @@ def plot_line_probe(run, name, out):
                  fontsize=9, wrap=True)
     ax.legend(fontsize=7)
     fig.tight_layout()
-    save(fig, out, "probe_%s_profiles.png" % name)
+    save(fig, out, "probe_%s_profiles" % name)
     if has_exact and len(times) > 1:
         peak = max(1e-300, float(np.max(np.abs(p[comp + "_exact"]))))
         err = np.sqrt(np.mean((p[comp] - p[comp + "_exact"]) ** 2, axis=1)) / peak
@@ -208,7 +216,7 @@ def plot_line_probe(run, name, out):
         ax.set_title(title(run, "probe '%s': profile error" % name), fontsize=9, wrap=True)
         ax.grid(True, which="both", alpha=0.3)
         fig.tight_layout()
-        save(fig, out, "probe_%s_error.png" % name)
+        save(fig, out, "probe_%s_error" % name)
 
 
 def plot_point_probe(run, name, out):
@@ -225,7 +233,7 @@ def plot_point_probe(run, name, out):
         ax.legend(fontsize=7)
     fig.suptitle(title(run, "probe '%s': velocity at its points" % name), fontsize=10)
     fig.tight_layout()
-    save(fig, out, "probe_%s_points.png" % name)
+    save(fig, out, "probe_%s_points" % name)
 
 
 def plot_flows(run, out):
@@ -240,7 +248,7 @@ def plot_flows(run, out):
     ax.legend(fontsize=8)
     ax.set_title(title(run, "flow rate through the line probes"), fontsize=9, wrap=True)
     fig.tight_layout()
-    save(fig, out, "flow_rates.png")
+    save(fig, out, "flow_rates")
 
 
 # ---- bodies -----------------------------------------------------------------------------------
@@ -265,7 +273,7 @@ def plot_reference(ax, col, refs):
     for (fname, xc, yc, rcol, label) in refs:
         if rcol != col:
             continue
-        path = os.path.join(REFERENCE_DIR, fname)
+        path = os.path.join(plot_references.REFERENCE_DIR, fname)
         if not os.path.exists(path):
             continue
         ref = reader.read_csv(path)
@@ -286,7 +294,7 @@ def plot_bodies(run, out):
     spec = {b: (specs[b] if b < len(specs) else {}) for b in bodies}
     names = {b: spec[b].get("name", "body %d" % b) for b in bodies}
     moving = [b for b in bodies if spec[b].get("motion", "free") != "fixed"]
-    refs = REFERENCES.get(case.get("name", ""), [])
+    refs, no_reference = plot_references.references_for(case)
     series = {b: run.body(b) for b in bodies}
     t_last = float(np.max(run.bodies["time"]))
     sizes = [body_size(spec[b]) for b in moving if body_size(spec[b])]
@@ -318,6 +326,8 @@ def plot_bodies(run, out):
             for k, b in enumerate(moving):
                 ax.plot(series[b]["time"], series[b][col], color="C%d" % k, label=names[b])
             plot_reference(ax, col, refs)
+            if no_reference and any(r[3] == col for r in plot_references.REFERENCES.get(case.get("name"), [])):
+                ax.plot([], [], " ", label=textwrap.fill(no_reference, 48))  # a legend line, no curve
             min_span(ax, [float(v) for b in moving for v in series[b][col]], span, unit, col)
         if col == "angle" and any(np.any(series[b]["omega"] != 0) for b in moving):
             tw = ax.twinx()
@@ -335,7 +345,7 @@ def plot_bodies(run, out):
         ax.set_visible(False)
     fig.suptitle(title(run, "bodies"), fontsize=11)
     fig.tight_layout()
-    save(fig, out, "bodies.png")
+    save(fig, out, "bodies")
 
 
 def plot_coefficients(run, out):
@@ -359,7 +369,7 @@ def plot_coefficients(run, out):
         ax.legend(fontsize=8)
     fig.suptitle(title(run, "coefficients (C = F / (0.5 rho0 U^2 L))"), fontsize=10)
     fig.tight_layout()
-    save(fig, out, "coefficients.png")
+    save(fig, out, "coefficients")
 
 
 # ---- the last snapshot ------------------------------------------------------------------------
@@ -403,14 +413,22 @@ def plot_snapshot(run, out):
         fig.colorbar(sc, ax=ax, label=label, shrink=0.8)
     fig.suptitle(title(run, "particles"), fontsize=11)
     fig.tight_layout()
-    save(fig, out, "snapshot_fields.png")
+    save(fig, out, "snapshot_fields")
 
 
 def main(argv):
-    if len(argv) != 2:
-        sys.stderr.write("usage: plot_run.py RUN_DIR\n")
+    args = argv[1:]
+    if len(args) == 3 and args[1] == "--format":
+        OUTPUT["format"] = args[2]
+        args = args[:1]
+    if len(args) != 1:
+        sys.stderr.write("usage: plot_run.py RUN_DIR [--format %s]\n" % "|".join(FORMATS))
         return 2
-    path = argv[1]
+    if OUTPUT["format"] not in FORMATS:
+        sys.stderr.write("plot_run.py: --format '%s': plots are drawn as %s; nothing drawn\n"
+                         % (OUTPUT["format"], ", ".join(FORMATS)))
+        return 2
+    path = args[0]
     if not os.path.isdir(path):
         sys.stderr.write("plot_run.py: '%s' is not a run directory\n" % path)
         return 2

@@ -193,10 +193,17 @@ int print_schema(bool json) {
   return std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : particula::kExitIoFailure;
 }
 
-CLI::App* add_plot(CLI::App& app, std::string& dir) {
+struct PlotArgs {
+  std::string dir;
+  std::string format = "png";
+};
+
+CLI::App* add_plot(CLI::App& app, PlotArgs& a) {
   auto* plot = app.add_subcommand("plot", "(Re)draw the plots of a run directory into DIR/plots (tools/plot_run.py)");
-  plot->add_option("dir", dir, "Run directory")->required();
-  plot->footer(footer("  particula plot runs/demo"));
+  plot->add_option("dir", a.dir, "Run directory")->required();
+  plot->add_option("--format", a.format, "Image format: png (default), svg or pdf")
+      ->check(CLI::IsMember(particula::plot_formats()));
+  plot->footer(footer("  particula plot runs/demo\n  particula plot runs/demo --format svg"));
   return plot;
 }
 
@@ -215,14 +222,14 @@ int main(int argc, char** argv) {
   ValidateArgs validate_args;
   GenerateArgs generate_args;
   bool schema_json = false;
-  std::string plot_dir;
+  PlotArgs plot_args;
   auto* run = add_run(app, run_args);
   auto* resume = add_resume(app, resume_args);
   auto* info = add_info(app, info_args);
   auto* validate_cmd = add_validate(app, validate_args);
   auto* generate = add_generate(app, generate_args);
   auto* schema = add_schema(app, schema_json);
-  auto* plot = add_plot(app, plot_dir);
+  auto* plot = add_plot(app, plot_args);
 
   try {
     app.parse(argc, argv);
@@ -242,7 +249,7 @@ int main(int argc, char** argv) {
     if (*info) return particula::info_command(info_args.case_file, info_args.overrides, !info_args.no_timing);
     if (*validate_cmd) return validate(validate_args);
     if (*generate) return particula::generate_command(generate_args.seed, generate_args.out);
-    if (*plot) return particula::plot_command(plot_dir);
+    if (*plot) return particula::plot_command(plot_args.dir, plot_args.format);
     if (*schema) return print_schema(schema_json);
   } catch (const particula::io::WriteError& e) {
     std::fprintf(stderr, "error: I/O failure: %s\n", e.what());

@@ -7,8 +7,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <vector>
 
 extern char** environ;
@@ -63,10 +65,18 @@ std::filesystem::path plot_script() { return std::filesystem::path(PARTICULA_SOU
 
 }  // namespace
 
+const std::vector<std::string>& plot_formats() {
+  static const std::vector<std::string> formats{"png", "svg", "pdf"};
+  return formats;
+}
+
 std::vector<std::string> plot_file_names(const std::vector<std::string>& probes) {
-  std::vector<std::string> names{"flow_rates.png", "bodies.png", "coefficients.png", "snapshot_fields.png"};
+  std::vector<std::string> stems{"flow_rates", "bodies", "coefficients", "snapshot_fields"};
   for (const std::string& p : probes)
-    for (const char* what : {"profiles", "error", "points"}) names.push_back(fmt::format("probe_{}_{}.png", p, what));
+    for (const char* what : {"profiles", "error", "points"}) stems.push_back(fmt::format("probe_{}_{}", p, what));
+  std::vector<std::string> names;
+  for (const std::string& format : plot_formats())
+    for (const std::string& stem : stems) names.push_back(stem + "." + format);
   return names;
 }
 
@@ -76,25 +86,32 @@ std::string plot_python() {
 }
 
 PlotOutcome draw_plots(const std::filesystem::path& run_dir, const std::filesystem::path& log_file,
-                       const std::function<bool()>& stop) {
+                       const std::function<bool()>& stop, const std::string& format) {
   std::error_code ec;
   if (!std::filesystem::exists(plot_script(), ec)) return PlotOutcome::NoScript;
   const std::string python = plot_python();
   const int check = run_program({python, "-c", "import matplotlib"}, {}, true, stop);
   if (check == kStopped) return PlotOutcome::Interrupted;
   if (check != 0) return PlotOutcome::NoMatplotlib;
-  const int drawn = run_program({python, plot_script().string(), run_dir.string()}, log_file, false, stop);
+  const int drawn =
+      run_program({python, plot_script().string(), run_dir.string(), "--format", format}, log_file, false, stop);
   if (drawn == kStopped) return PlotOutcome::Interrupted;
   return drawn == 0 ? PlotOutcome::Drawn : PlotOutcome::Failed;
 }
 
-int plot_command(const std::filesystem::path& run_dir) {
+int plot_command(const std::filesystem::path& run_dir, const std::string& format) {
+  const auto& formats = plot_formats();
+  if (std::find(formats.begin(), formats.end(), format) == formats.end()) {
+    std::fprintf(stderr, "error: --format '%s': plots are drawn as %s; nothing drawn\n", format.c_str(),
+                 fmt::format("{}", fmt::join(formats, ", ")).c_str());
+    return 2;
+  }
   std::error_code ec;
   if (!std::filesystem::is_directory(run_dir, ec) || !std::filesystem::exists(run_dir / "case.toml", ec)) {
     std::fprintf(stderr, "error: '%s' is not a run directory (it has no case.toml)\n", run_dir.string().c_str());
     return 2;
   }
-  switch (draw_plots(run_dir)) {
+  switch (draw_plots(run_dir, {}, {}, format)) {
     case PlotOutcome::Drawn:
       std::fprintf(stderr, "plots in %s\n", (run_dir / "plots").string().c_str());
       return 0;

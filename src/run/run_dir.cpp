@@ -49,7 +49,10 @@ bool top_file(const std::string& name, const std::vector<std::string>* probes) {
 
 /// An image particula draws into plots/: with `probes`, only those of the case; without, any.
 bool plot_file(const std::string& name, const std::vector<std::string>* probes) {
-  if (!probes) return ends_with(name, ".png") && name.size() > 4;
+  if (!probes)
+    return std::any_of(plot_formats().begin(), plot_formats().end(), [&](const std::string& format) {
+      return ends_with(name, "." + format) && name.size() > format.size() + 1;
+    });
   const std::vector<std::string> names = plot_file_names(*probes);
   return std::find(names.begin(), names.end(), name) != names.end();
 }

@@ -131,11 +131,19 @@ TEST(RunDir, PlotNamesAreThoseThePlotScriptDraws) {
   const std::vector<std::string> names = plot_file_names({"p"});
   std::size_t n = 0;
   for (std::sregex_iterator it(script.begin(), script.end(), save), end; it != end; ++it, ++n) {
-    std::string name = (*it)[1];
-    if (const auto k = name.find("%s"); k != std::string::npos) name.replace(k, 2, "p");
-    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name << " is drawn by plot_run.py";
+    std::string stem = (*it)[1];
+    if (const auto k = stem.find("%s"); k != std::string::npos) stem.replace(k, 2, "p");
+    for (const std::string& format : plot_formats())
+      EXPECT_NE(std::find(names.begin(), names.end(), stem + "." + format), names.end())
+          << stem << "." << format << " is drawn by plot_run.py --format " << format;
   }
-  EXPECT_EQ(n, names.size()) << "every name plot_file_names gives is drawn by plot_run.py";
+  EXPECT_EQ(n * plot_formats().size(), names.size()) << "every name plot_file_names gives is drawn by plot_run.py";
+  // The script's formats are plot_formats(), in the same order (the first the default).
+  std::smatch formats;
+  ASSERT_TRUE(std::regex_search(script, formats, std::regex(R"re(FORMATS = \(([^)]*)\))re")));
+  std::string expected;
+  for (const std::string& f : plot_formats()) expected += (expected.empty() ? "\"" : ", \"") + f + "\"";
+  EXPECT_EQ(formats[1].str(), expected);
 }
 
 TEST(RunDir, OverwriteRefusesFilesThatOnlyLookLikeOutputs) {
