@@ -99,7 +99,8 @@ const char* kind(bool fluid) { return fluid ? "fluid" : "solid"; }
 std::optional<std::size_t> enclosing_loop(const std::vector<Loop>& loops, std::size_t k) {
   std::optional<std::size_t> parent;
   for (std::size_t o = 0; o < loops.size(); ++o)
-    if (o != k && encloses(loops[o].polygon, loops[k].point) && (!parent || loops[o].area < loops[*parent].area))
+    if (o != k && encloses(loops[o].polygon, loops[k].point) &&
+        (!parent || loops[o].area < loops[*parent].area))
       parent = o;
   return parent;
 }
@@ -141,22 +142,24 @@ void check_wall_regions(const Case& c, const LoadContext& ctx) {
     if (const auto parent = enclosing_loop(loops, k)) {
       const Loop& outer = loops[*parent];
       if (outer.fluid_inside != inner.fluid_inside) continue;
-      throw ctx.error(key, fmt::format("{} lies inside {}: the region between them would be {} by the outer chain "
-                                       "and {} by the inner one. Inside a container (fluid inside) an obstacle "
-                                       "turns clockwise (fluid outside); inside an obstacle only a pocket of "
-                                       "fluid, counter-clockwise; reverse one of the two chains",
-                                       loop_text(c, inner), loop_text(c, outer), kind(outer.fluid_inside),
-                                       kind(!inner.fluid_inside)));
+      throw ctx.error(key,
+                      fmt::format("{} lies inside {}: the region between them would be {} by the outer chain "
+                                  "and {} by the inner one. Inside a container (fluid inside) an obstacle "
+                                  "turns clockwise (fluid outside); inside an obstacle only a pocket of "
+                                  "fluid, counter-clockwise; reverse one of the two chains",
+                                  loop_text(c, inner), loop_text(c, outer), kind(outer.fluid_inside),
+                                  kind(!inner.fluid_inside)));
     }
     if (!others.empty()) {
       const bool region_fluid = in_fluid_region(other_pieces, dom, inner.point);
       if (region_fluid != inner.fluid_inside) continue;
       const std::size_t w = nearest_wall(c, dom, others, inner.point);
-      throw ctx.error(key, fmt::format("{} stands in the region that the walls ending on the domain's edge or "
-                                       "closing through a periodic side make {} (the side of {} it lies on), but "
-                                       "says its outside is {}; reverse the chain",
-                                       loop_text(c, inner), kind(region_fluid), wall_text(c, w),
-                                       kind(!inner.fluid_inside)));
+      throw ctx.error(
+          key,
+          fmt::format("{} stands in the region that the walls ending on the domain's edge or "
+                      "closing through a periodic side make {} (the side of {} it lies on), but "
+                      "says its outside is {}; reverse the chain",
+                      loop_text(c, inner), kind(region_fluid), wall_text(c, w), kind(!inner.fluid_inside)));
     }
     if (!first_outermost) {
       first_outermost = k;
@@ -164,11 +167,12 @@ void check_wall_regions(const Case& c, const LoadContext& ctx) {
     }
     const Loop& first = loops[*first_outermost];
     if (first.fluid_inside == inner.fluid_inside) continue;
-    throw ctx.error(key, fmt::format("{} and {} stand side by side, inside no other chain: the region round them "
-                                     "would be {} by the first and {} by the second; put the obstacle (clockwise) "
-                                     "inside a container (counter-clockwise), or reverse one of the two chains",
-                                     loop_text(c, first), loop_text(c, inner), kind(!first.fluid_inside),
-                                     kind(!inner.fluid_inside)));
+    throw ctx.error(key,
+                    fmt::format("{} and {} stand side by side, inside no other chain: the region round them "
+                                "would be {} by the first and {} by the second; put the obstacle (clockwise) "
+                                "inside a container (counter-clockwise), or reverse one of the two chains",
+                                loop_text(c, first), loop_text(c, inner), kind(!first.fluid_inside),
+                                kind(!inner.fluid_inside)));
   }
 }
 
