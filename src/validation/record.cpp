@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <toml++/toml.h>
@@ -47,20 +45,6 @@ std::vector<std::string> content_lines(const std::string& text) {
   for (std::string line; std::getline(in, line);)
     if (!line.empty() && line[0] != '#') lines.push_back(line);
   return lines;
-}
-
-/// Each key line prefixed with its table ("[fluid] nu = 1e-06"; the n-th "[[body]]" as
-/// "[[body]]#n"), so that equal lines of two tables are told apart.
-std::vector<std::string> qualified(const std::vector<std::string>& lines) {
-  std::vector<std::string> out;
-  std::string table;
-  std::map<std::string, int> seen;
-  for (const auto& l : lines) {
-    if (l.rfind("[[", 0) == 0) table = fmt::format("{}#{}", l, seen[l]++);
-    else if (l.rfind('[', 0) == 0) table = l;
-    out.push_back(table.empty() || l.rfind('[', 0) == 0 ? l : table + " " + l);
-  }
-  return out;
 }
 
 toml::array string_array(const std::vector<std::string>& v) {
@@ -319,14 +303,7 @@ std::vector<std::string> stale_lines(const StoredResult& r, std::size_t max_line
   } catch (const std::exception& e) {
     return {fmt::format("the case no longer loads: {}", e.what())};
   }
-  const std::vector<std::string> before = qualified(content_lines(r.resolved_case)), after = qualified(content_lines(now));
-  const std::set<std::string> b(before.begin(), before.end()), a(after.begin(), after.end());
-  std::vector<std::string> out;
-  for (const auto& l : before)
-    if (!a.count(l) && out.size() < max_lines) out.push_back("- " + l);
-  for (const auto& l : after)
-    if (!b.count(l) && out.size() < max_lines) out.push_back("+ " + l);
-  return out;
+  return resolved_case_differences(r.resolved_case, now, max_lines);
 }
 
 }  // namespace particula
