@@ -15,6 +15,7 @@
 #include "particula/run/runner.hpp"
 #include "particula/run/version.hpp"
 #include "particula/validation/random_case.hpp"
+#include "particula/validation/report.hpp"
 #include "particula/validation/validate.hpp"
 
 namespace {
@@ -92,6 +93,8 @@ struct ValidateArgs {
   particula::ValidateOptions opt;
   std::vector<std::string> groups;
   std::string check_dir;  // --check: evaluate this run directory instead of running the suite
+  bool report = false;    // --report: generate docs/validation.md from the stored results
+  particula::ReportOptions report_opt;
 };
 
 CLI::App* add_validate(CLI::App& app, ValidateArgs& a) {
@@ -126,22 +129,48 @@ CLI::App* add_validate(CLI::App& app, ValidateArgs& a) {
       ->excludes(sets)
       ->excludes(groups)
       ->excludes(quiet);
+  auto* record = validate->add_flag("--record", a.opt.record,
+                                    "Store each case's result (checks, outcome, figure data) under validation/results "
+                                    "of the source tree (or --results DIR), the data --report generates "
+                                    "docs/validation.md from; with --check, store the checked run at its level");
+  auto* results = validate->add_option("--results", a.opt.results_dir,
+                                       "Where --record stores and --report reads results (default: validation/results "
+                                       "of the source tree)");
+  auto* report = validate->add_flag("--report", a.report,
+                                    "Run nothing: write docs/validation.md (or --doc FILE) and its figures from the "
+                                    "stored results and validation/template.md");
+  auto* doc = validate->add_option("--doc", a.report_opt.doc, "With --report: the Markdown file to write");
+  auto* tmpl = validate->add_option("--template", a.report_opt.template_file, "With --report: the template to expand");
+  report->excludes(quick)->excludes(out)->excludes(threads)->excludes(sets)->excludes(groups)->excludes(record);
+  doc->needs(report);
+  tmpl->needs(report);
+  (void)results;
   validate->footer(footer("  particula validate --quick --out runs/validate\n"
                           "  particula validate --case couette --case falling_cylinder --quick\n"
                           "  particula validate --group robustness --quick\n"
                           "  particula validate --check runs/validate/dkt\n"
                           "  particula validate --check runs/pile --case settling_pile\n"
+                          "  particula validate --case dkt --quick --record && particula validate --report\n"
                           "An unknown --case name lists the valid names."));
   return validate;
 }
 
 int validate(ValidateArgs& a) {
+  if (a.report) {
+    if (!a.check_dir.empty() || !a.opt.only.empty()) {
+      std::fprintf(stderr, "error: validate --report runs nothing: it takes no --check or --case\n");
+      return 2;
+    }
+    a.report_opt.results_dir = a.opt.results_dir;
+    return particula::validate_report_command(a.report_opt);
+  }
   if (!a.check_dir.empty()) {
     if (a.opt.only.size() > 1) {
       std::fprintf(stderr, "error: validate --check takes at most one --case\n");
       return 2;
     }
-    return particula::validate_check_command(a.check_dir, a.opt.only.empty() ? "" : a.opt.only.front());
+    return particula::validate_check_command(a.check_dir, a.opt.only.empty() ? "" : a.opt.only.front(), a.opt.record,
+                                             a.opt.results_dir);
   }
   for (const auto& g : a.groups)
     a.opt.groups.push_back(g == "analytic"    ? particula::ValidationGroup::Analytic

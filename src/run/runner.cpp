@@ -97,11 +97,14 @@ void save_checkpoint(const fs::path& file, const Session& s) {
                                   solver.groups(), solver.open_flux(), solver.load_band_state()});
 }
 
-/// The run has written its initial state: when it replaces an old run directory, a checkpoint
-/// is written too (so the new run can be resumed) and then the old directory is deleted.
+/// The run has written its initial state: a checkpoint of it is written too, and only then is
+/// the run directory kept (and an old one it replaces deleted). So a run directory that exists
+/// can always be resumed: a failure before this point (a full disk at the first snapshot or at
+/// this checkpoint) removes the new directory and puts an old one back, one after it leaves the
+/// last checkpoint, which is replaced atomically.
 void mark_started(Session& s, Reporter& rep) {
   if (!s.run_dir || s.run_dir->committed()) return;
-  if (s.run_dir->replacing()) save_checkpoint(checkpoint_path(s.dir), s);
+  save_checkpoint(checkpoint_path(s.dir), s);
   if (auto warning = s.run_dir->commit()) rep.tell("warning: " + *warning);
 }
 
@@ -500,6 +503,34 @@ bool has_checkpoint(const fs::path& run_dir, const fs::path& file) {
   return false;
 }
 
+/// Refuses (io::IoError) a resume whose run directory's case.toml says something else than the
+/// case the resume runs: the checkpoint's (`checkpoint_case`) or that with the resume's --set
+/// (`resumed_case`). A resume takes the case from its checkpoint, so an edit of case.toml would
+/// otherwise be lost without a word. A missing case.toml is written again; comments and
+/// formatting are not edits (both sides are compared resolved).
+void check_case_file_unedited(const fs::path& run_dir, const std::string& checkpoint_case,
+                              const std::string& resumed_case) {
+  const fs::path file = run_dir / "case.toml";
+  std::error_code ec;
+  if (!fs::exists(file, ec)) return;
+  std::string on_disk;
+  try {
+    on_disk = resolved_case_toml(load_case(file));
+  } catch (const CaseError& e) {
+    throw io::IoError(fmt::format("{}\n{} no longer loads, so a resume would replace it with the checkpoint's "
+                                  "case: delete it (resume writes it again) or undo the edit",
+                                  e.what(), file.string()));
+  }
+  if (on_disk == resumed_case || resolved_case_differences(checkpoint_case, on_disk).empty()) return;
+  std::string lines;
+  for (const auto& l : resolved_case_differences(checkpoint_case, on_disk)) lines += "\n    " + l;
+  throw io::IoError(fmt::format(
+      "{} was edited since the run wrote it; a resume takes the case from its checkpoint, so the edit would "
+      "be lost (- the checkpoint's, + the file's):{}\nOnly time.end and output.* can change in a resumed run, "
+      "with --set KEY=VALUE; to resume, undo the edit or delete {} (resume writes it again)",
+      file.string(), lines, file.string()));
+}
+
 /// Reads the checkpoint `file` of the run the marker describes into `k`, and its case (with the
 /// resume's overrides) into s.c; says why they cannot be resumed and returns false otherwise.
 bool read_resume_state(const ResumeOptions& opt, const fs::path& file, const RunMarker& marker, Session& s,
@@ -514,6 +545,7 @@ bool read_resume_state(const ResumeOptions& opt, const fs::path& file, const Run
           file.string(), k.case_hash, opt.run_dir.string(), marker.case_hash, kRunMarker));
     s.c = load_case_text(k.case_toml, file, opt.overrides);
     check_checkpoint_fits_case(k, s.c, file);
+    check_case_file_unedited(opt.run_dir, k.case_toml, resolved_case_toml(s.c));
   } catch (const CaseError& e) {
     bad_input(e);
     return false;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <cstdio>
 #include <fmt/format.h>
 
@@ -13,6 +14,8 @@
 #include "particula/io/vtk.hpp"
 #include "particula/solver/particles.hpp"
 #include "particula/validation/robustness.hpp"
+#include "run_data.hpp"
+#include "validate_plots.hpp"
 
 namespace particula {
 
@@ -21,71 +24,6 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string percent(double fraction) { return fmt::format("{:.3g} %", 100 * fraction); }
-
-/// The last snapshot of a run directory (particles.pvd's last entry).
-io::VtpData last_snapshot(const fs::path& run_dir, double& time) {
-  const io::PvdIndex index = io::PvdIndex::read(run_dir / "particles.pvd");
-  if (index.entries().empty()) throw io::IoError(fmt::format("'{}': no snapshot", (run_dir / "particles.pvd").string()));
-  time = index.entries().back().time;
-  return io::read_vtp(run_dir / index.entries().back().file);
-}
-
-/// Largest speed of the fluid particles of a snapshot.
-double peak_fluid_speed(const io::VtpData& vtp) {
-  const auto& v = vtp.array("velocity");
-  const auto& kind = vtp.int_array("kind");
-  double peak = 0;
-  for (std::size_t i = 0; i < vtp.num_points; ++i)
-    if (kind.data[i] == static_cast<std::int32_t>(Kind::Fluid))
-      peak = std::max(peak, std::hypot(v.data[3 * i], v.data[3 * i + 1]));
-  return peak;
-}
-
-// ---- body histories (bodies.csv) and reference curves -----------------------------------------
-
-/// One body's rows of bodies.csv.
-struct BodyHistory {
-  std::vector<double> t, x, y, angle, vx, vy, omega;
-  std::size_t size() const { return t.size(); }
-};
-
-BodyHistory body_history(const fs::path& run_dir, int body) {
-  const io::CsvTable table = io::read_csv(run_dir / "bodies.csv");
-  const std::size_t ib = table.column_index("body"), it = table.column_index("time"), ix = table.column_index("x"),
-                    iy = table.column_index("y"), ia = table.column_index("angle"), ivx = table.column_index("vx"),
-                    ivy = table.column_index("vy"), iw = table.column_index("omega");
-  BodyHistory h;
-  for (const auto& r : table.rows) {
-    if (static_cast<int>(r[ib]) != body) continue;
-    h.t.push_back(r[it]);
-    h.x.push_back(r[ix]);
-    h.y.push_back(r[iy]);
-    h.angle.push_back(r[ia]);
-    h.vx.push_back(r[ivx]);
-    h.vy.push_back(r[ivy]);
-    h.omega.push_back(r[iw]);
-  }
-  if (h.size() < 2)
-    throw io::IoError(fmt::format("'{}': fewer than two rows for body {}", (run_dir / "bodies.csv").string(), body));
-  return h;
-}
-
-/// A reference curve of reference/ (columns t and `column`, optionally only the rows of one body).
-struct Curve {
-  std::vector<double> t, v;
-};
-
-Curve reference_curve(const std::string& file, const std::string& column, int body = -1) {
-  const io::CsvTable table = io::read_csv(source_dir() / "reference" / file);
-  const std::size_t it = table.column_index("t"), iv = table.column_index(column);
-  Curve c;
-  for (const auto& r : table.rows) {
-    if (body >= 0 && static_cast<int>(r[table.column_index("body")]) != body) continue;
-    c.t.push_back(r[it]);
-    c.v.push_back(r[iv]);
-  }
-  return c;
-}
 
 /// Linear interpolation of y(t) at `at` (held constant outside the samples).
 double interpolate(const std::vector<double>& t, const std::vector<double>& y, double at) {
@@ -164,6 +102,7 @@ std::vector<ValidationCheck> check_profile_error(const fs::path& run_dir, double
   c.reference = "series solution";
   c.tolerance = "< " + percent(limit);
   c.pass = e < limit;  // false for NaN
+  c.error = e;
   return {c};
 }
 
@@ -180,6 +119,7 @@ std::vector<ValidationCheck> check_taylor_green_decay(const fs::path& run_dir, c
   c.reference = fmt::format("{:.4f} = exp(-8 pi^2 t/Re)", ref);
   c.tolerance = "within " + percent(rel_tol);
   c.pass = std::fabs(ratio / ref - 1) < rel_tol;
+  c.error = ratio / ref - 1;
   return {c};
 }
 
@@ -210,6 +150,7 @@ std::vector<ValidationCheck> check_hydrostatic(const fs::path& run_dir, const Ca
   pc.reference = fmt::format("{:.2f} = p0 + rho g H", ref);
   pc.tolerance = "within " + percent(rel_tol);
   pc.pass = std::fabs(bottom / ref - 1) < rel_tol;
+  pc.error = bottom / ref - 1;
   const double speed = peak_fluid_speed(vtp), scale = std::sqrt(g * H);
   ValidationCheck vc;
   vc.quantity = fmt::format("peak fluid speed / sqrt(g H) at t = {:.4g} s", t);
@@ -238,6 +179,7 @@ std::vector<ValidationCheck> check_settling_cylinder(const fs::path& run_dir, co
   p.reference = fmt::format("{:.4f} (Glowinski et al. 2001; max 0.0558 at 0.52 s)", terminal);
   p.tolerance = "within " + percent(peak_tol) + (fine ? "" : " (coarse level)");
   p.pass = std::fabs(peak / terminal - 1) < peak_tol;
+  p.error = peak / terminal - 1;
   out.push_back(p);
   // time to 95 % of the run's own terminal (peak) speed: the shape of the approach
   std::vector<double> speed(h.size());
@@ -316,6 +258,7 @@ std::vector<ValidationCheck> check_two_cylinders(const fs::path& run_dir, const 
   v.reference = "-1.12e-3 at 5.8 s (Hashemi et al. 2012)";
   v.tolerance = "± 25 %, ± 2 s";
   v.pass = interior && std::fabs(h.vx[k] / -1.12e-3 - 1) <= 0.25 && std::fabs(h.t[k] - 5.8) <= 2;
+  v.error = h.vx[k] / -1.12e-3 - 1;
   out.push_back(v);
   double off = 0;
   for (double y : h.y) off = std::max(off, std::fabs(y - mid));
@@ -376,6 +319,7 @@ std::vector<ValidationCheck> check_dkt(const fs::path& run_dir, const Case& cs) 
   pk.reference = "0.0478 (Hashemi et al. 2012; 0.0474 Ng et al. 2021)";
   pk.tolerance = "within 10 %";
   pk.pass = std::fabs(peak / 0.0478 - 1) <= 0.10;
+  pk.error = peak / 0.0478 - 1;
   out.push_back(pk);
   return out;
 }
@@ -409,6 +353,37 @@ std::vector<ValidationCheck> check_ellipse_obstacle(const fs::path& run_dir, con
   return out;
 }
 
+namespace {
+
+/// The figure of each analytic and paper case (validate_plots.cpp).
+void set_plots(std::vector<ValidationEntry>& v) {
+  using Ref = BodyCurve::Reference;
+  const std::map<std::string, BodyCurve> bodies = {
+      {"shear_migration",
+       {"Height of the migrating cylinder", "y (m)", "y", {0}, {Ref{"Feng & Michaelides 2002", "feng2002_migration_y.csv", "y"}}}},
+      {"falling_cylinder",
+       {"Settling velocity", "vy (m/s)", "vy", {0}, {Ref{"Glowinski et al. 2001", "glowinski2001_settling_vy.csv", "vy"}}}},
+      {"two_cylinders_shear",
+       {"vx of the free cylinder", "vx (m/s)", "vx", {0},
+        {Ref{"Hashemi et al. 2012", "hashemi2012_two_cylinders_vx.csv", "vx"}}}},
+      {"dkt",
+       {"Fall velocities of the two cylinders", "vy (m/s)", "vy", {0, 1},
+        {Ref{"Hashemi et al. 2012, body 1", "hashemi2012_dkt_vy.csv", "vy", 1},
+         Ref{"Hashemi et al. 2012, body 2", "hashemi2012_dkt_vy.csv", "vy", 2}}}},
+      {"ellipse_obstacle", {"Angle of the ellipse", "angle (rad)", "angle", {1}, {}}},
+  };
+  for (auto& e : v) {
+    if (e.name == "couette" || e.name == "poiseuille") e.plot = plot_probe_profile;
+    else if (e.name == "taylor_green") e.plot = plot_taylor_green;
+    else if (e.name == "hydrostatic") e.plot = plot_hydrostatic;
+    else if (e.name == "spin_up") e.plot = plot_spin_up;
+    else if (const auto it = bodies.find(e.name); it != bodies.end())
+      e.plot = [spec = it->second](const fs::path& d, const Case&) { return plot_body_curve(d, spec); };
+  }
+}
+
+}  // namespace
+
 std::vector<ValidationEntry> validation_entries() {
   std::vector<ValidationEntry> v;
   auto add = [&](std::string name, bool paper, std::vector<std::string> quick, auto check) {
@@ -441,6 +416,7 @@ std::vector<ValidationEntry> validation_entries() {
   add("dkt", true, {"resolution.d0=2e-4"}, check_dkt);
   // 7.5 at the coarsest level the body-size check allows (10 particles across the ellipse).
   add("ellipse_obstacle", true, {"resolution.d0=2e-4", "time.end=2.5"}, check_ellipse_obstacle);
+  set_plots(v);
   for (auto& e : open_boundary_entries()) v.push_back(std::move(e));
   for (auto& e : robustness_entries()) v.push_back(std::move(e));
   return v;

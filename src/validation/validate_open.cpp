@@ -12,6 +12,7 @@
 
 #include "particula/io/csv.hpp"
 #include "particula/validation/validate.hpp"
+#include "validate_plots.hpp"
 
 namespace particula {
 
@@ -39,6 +40,7 @@ ValidationCheck relative_check(std::string quantity, double value, double refere
   c.reference = std::move(reference_text);
   c.tolerance = fmt::format("within {:.3g} %", 100 * tol);
   c.pass = std::fabs(value / reference - 1) <= tol;
+  c.error = value / reference - 1;
   return c;
 }
 
@@ -144,6 +146,7 @@ std::vector<ValidationCheck> check_poiseuille_open(const fs::path& run_dir, cons
   p.reference = "the parabola of the inflow";
   p.tolerance = "< 1 %";
   p.pass = rms < 0.01;
+  p.error = rms;
   out.push_back(p);
   const io::CsvTable flow = io::read_csv(run_dir / "flow_profile.csv");
   const double q = flow.rows.back()[flow.column_index("flow_rate")];
@@ -328,6 +331,7 @@ std::vector<ValidationEntry> open_boundary_entries() {
   p.group = ValidationGroup::Analytic;
   p.case_file = "cases/poiseuille_open.toml";
   p.evaluate = check_poiseuille_open;
+  p.plot = plot_open_profile;
   v.push_back(std::move(p));
   // The default runs the case as shipped (D/20, about half an hour on 2 cores); --quick at D/10.
   ValidationEntry d;
@@ -335,6 +339,7 @@ std::vector<ValidationEntry> open_boundary_entries() {
   d.group = ValidationGroup::Benchmark;
   d.case_file = "cases/dfg_2d1.toml";
   d.evaluate = check_dfg_2d1;
+  d.plot = plot_force_coefficients;
   d.paper = true;
   d.quick_overrides = {"resolution.d0=0.01"};
   v.push_back(d);

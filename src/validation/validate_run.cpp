@@ -21,7 +21,9 @@
 #include "particula/run/run_dir.hpp"
 #include "particula/run/runner.hpp"
 #include "particula/validation/robustness.hpp"
+#include "particula/validation/record.hpp"
 #include "particula/validation/validate.hpp"
+#include "run_outcome.hpp"
 
 namespace particula {
 
@@ -48,60 +50,24 @@ bool entry_selected(const ValidationEntry& entry, const ValidateOptions& opt) {
   return std::find(opt.groups.begin(), opt.groups.end(), entry.group) != opt.groups.end();
 }
 
+std::vector<std::string> level_overrides(const ValidationEntry& entry, bool quick, double& d0) {
+  const fs::path case_file = source_dir() / entry.case_file;
+  std::vector<std::string> sets = entry.overrides;
+  const std::vector<std::string>* extra = nullptr;
+  if (entry.paper) extra = quick ? &entry.quick_overrides : nullptr;
+  else if (!quick && !entry.fine_overrides.empty()) extra = &entry.fine_overrides;
+  if (entry.paper || extra) {
+    if (extra) sets.insert(sets.end(), extra->begin(), extra->end());
+    d0 = load_case(case_file, sets).d0;
+    return sets;
+  }
+  const Case base = load_case(case_file, entry.overrides);
+  d0 = quick ? base.d0 : base.d0 / 2;
+  sets.push_back(fmt::format("resolution.d0={}", d0));
+  return sets;
+}
+
 namespace {
-
-/// What a run left behind: summary.json's status, steps and guard counters, and the failure
-/// message of a numerical failure (log.txt's "error:" line), so that a case that stops early is
-/// reported with why and where rather than as a bare exit code.
-struct RunOutcome {
-  std::string status;   // "completed", "failed", ... ("" when there is no summary.json)
-  std::int64_t steps = -1;
-  double end_time = std::nan("");
-  std::vector<std::pair<std::string, double>> guards;
-  std::string failure;  // the message of an exit 3
-};
-
-/// The last "error: " line of the run's log (without the timestamp and the prefix).
-std::string failure_message(const fs::path& run_dir) {
-  std::string text;
-  try {
-    text = io::read_file(run_dir / "log.txt");
-  } catch (const std::exception&) {
-    return "";
-  }
-  const std::size_t at = text.rfind("error: ");
-  if (at == std::string::npos) return "";
-  const std::size_t end = text.find('\n', at);
-  return text.substr(at + 7, end == std::string::npos ? std::string::npos : end - at - 7);
-}
-
-RunOutcome read_outcome(const fs::path& run_dir) {
-  RunOutcome o;
-  o.failure = failure_message(run_dir);
-  std::string summary;
-  try {
-    summary = io::read_file(run_dir / "summary.json");
-  } catch (const std::exception&) {
-    return o;
-  }
-  try {
-    o.steps = static_cast<std::int64_t>(io::json_number_field(summary, "steps"));
-    o.end_time = io::json_number_field(summary, "end_time");
-    o.guards = io::json_object_numbers(summary, "guard_events");
-    const std::size_t k = summary.find("\"status\"");
-    const std::size_t q0 = summary.find('"', summary.find(':', k) + 1), q1 = summary.find('"', q0 + 1);
-    if (k != std::string::npos && q1 != std::string::npos) o.status = summary.substr(q0 + 1, q1 - q0 - 1);
-  } catch (const std::exception&) {
-  }
-  return o;
-}
-
-/// "name 12, other 0" (the guard counters as summary.json lists them).
-std::string guards_text(const RunOutcome& o) {
-  std::string s;
-  for (const auto& [name, n] : o.guards) s += fmt::format("{}{} {:.0f}", s.empty() ? "" : ", ", name, n);
-  return s.empty() ? "-" : s;
-}
 
 struct EntryResult {
   const ValidationEntry* entry = nullptr;
@@ -157,7 +123,7 @@ std::string report_markdown(const std::vector<EntryResult>& results, const Valid
   for (const auto& r : results)
     md += fmt::format("| {} | {} | {} | {} | {} | {:.6g} | {} | {} |\n", r.entry->name, group_name(r.entry->group),
                       r.exit_code, r.outcome.status.empty() ? "-" : r.outcome.status, r.outcome.steps,
-                      r.outcome.end_time, cell(guards_text(r.outcome)),
+                      r.outcome.end_time, cell(guards_text(r.outcome.guards)),
                       cell(r.outcome.failure.empty() ? r.error : r.outcome.failure));
   md += "\n## Runs and plots\n\n";
   for (const auto& r : results) {
@@ -180,25 +146,6 @@ std::string report_markdown(const std::vector<EntryResult>& results, const Valid
   return md;
 }
 
-/// The --set overrides of an entry at the chosen level, and its d0 (the level rules of
-/// ValidationEntry).
-std::vector<std::string> level_overrides(const ValidationEntry& entry, const fs::path& case_file, bool quick,
-                                         double& d0) {
-  std::vector<std::string> sets = entry.overrides;
-  const std::vector<std::string>* extra = nullptr;
-  if (entry.paper) extra = quick ? &entry.quick_overrides : nullptr;
-  else if (!quick && !entry.fine_overrides.empty()) extra = &entry.fine_overrides;
-  if (entry.paper || extra) {
-    if (extra) sets.insert(sets.end(), extra->begin(), extra->end());
-    d0 = load_case(case_file, sets).d0;
-    return sets;
-  }
-  const Case base = load_case(case_file, entry.overrides);
-  d0 = quick ? base.d0 : base.d0 / 2;
-  sets.push_back(fmt::format("resolution.d0={}", d0));
-  return sets;
-}
-
 /// Runs one entry into its directory and evaluates it (also a run that stopped early: its
 /// checks then show how far it got).
 EntryResult run_entry(const ValidationEntry& entry, const ValidateOptions& opt) {
@@ -212,7 +159,7 @@ EntryResult run_entry(const ValidationEntry& entry, const ValidateOptions& opt) 
   run.threads = opt.threads;
   const fs::path case_file = source_dir() / entry.case_file;
   try {
-    run.overrides = level_overrides(entry, case_file, opt.quick, r.d0);
+    run.overrides = level_overrides(entry, opt.quick, r.d0);
     run.overrides.insert(run.overrides.end(), opt.sets.begin(), opt.sets.end());
     if (!opt.sets.empty()) r.d0 = load_case(case_file, run.overrides).d0;
     r.sets = run.overrides;
@@ -223,7 +170,15 @@ EntryResult run_entry(const ValidationEntry& entry, const ValidateOptions& opt) 
     r.exit_code = run_command(case_file, run);
     r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.outcome = read_outcome(r.dir);
-    if (r.exit_code == 0 || r.exit_code == 3) r.checks = entry.evaluate(r.dir, load_case(r.dir / "case.toml"));
+    if (r.exit_code == 0 || r.exit_code == 3) {
+      if (opt.record) {
+        const StoredResult stored = make_stored_result(entry, r.dir, level_name(opt.quick), r.exit_code);
+        r.checks = stored.checks;
+        write_stored_result(opt.results_dir.empty() ? default_results_dir() : opt.results_dir, stored);
+      } else {
+        r.checks = entry.evaluate(r.dir, load_case(r.dir / "case.toml"));
+      }
+    }
   } catch (const std::exception& e) {
     r.error = e.what();
   }
@@ -244,7 +199,7 @@ void print_checks(std::FILE* out, const std::vector<ValidationCheck>& checks) {
 void print_outcome(std::FILE* out, const RunOutcome& o) {
   if (o.steps >= 0)
     std::fprintf(out, "  %s after %lld steps at t = %g s; guard events: %s\n", o.status.c_str(),
-                 static_cast<long long>(o.steps), o.end_time, guards_text(o).c_str());
+                 static_cast<long long>(o.steps), o.end_time, guards_text(o.guards).c_str());
 }
 
 void print_result(const EntryResult& r) {
@@ -372,17 +327,50 @@ const ValidationEntry& entry_for_check(const std::vector<ValidationEntry>& entri
 
 }  // namespace
 
-int validate_check_command(const fs::path& run_dir, const std::string& case_name) {
+namespace {
+/// The level of `entry` whose resolution the run has. Throws CheckRefused when neither.
+std::string run_level(const ValidationEntry& entry, const Case& c, const fs::path& dir) {
+  double d_quick = 0, d_default = 0;
+  level_overrides(entry, true, d_quick);
+  level_overrides(entry, false, d_default);
+  const auto same = [&](double d) { return std::fabs(c.d0 / d - 1) < 1e-9; };
+  if (same(d_quick)) return level_name(true);
+  if (same(d_default)) return level_name(false);
+  throw CheckRefused(fmt::format("{}: resolution.d0 = {} m is neither level of {} (quick {} m, default {} m): not "
+                                 "recorded",
+                                 dir.string(), c.d0, entry.name, d_quick, d_default));
+}
+
+/// Stores the result of the run directory (validate --check --record); returns where.
+fs::path record_check(const ValidationEntry& entry, const Case& c, const fs::path& dir, const fs::path& results_dir) {
+  const std::string level = run_level(entry, c, dir);
+  const RunOutcome o = read_outcome(dir);
+  const StoredResult stored = make_stored_result(entry, dir, level, o.exit_code < 0 ? 0 : o.exit_code);
+  const fs::path root = results_dir.empty() ? default_results_dir() : results_dir;
+  write_stored_result(root, stored);
+  return stored_result_path(root, level, entry.name);
+}
+}  // namespace
+
+int validate_check_command(const fs::path& run_dir, const std::string& case_name, bool record,
+                           const fs::path& results_dir) {
   const std::vector<ValidationEntry> entries = validation_entries();
   std::vector<ValidationCheck> checks;
+  fs::path recorded;
   try {
     const Case c = run_directory_case(run_dir);
     const ValidationEntry& entry = entry_for_check(entries, case_name, c, run_dir);
     std::printf("validate --check %s: the checks of %s (%s), resolution.d0 = %g m\n", run_dir.string().c_str(),
                 entry.name.c_str(), group_name(entry.group), c.d0);
     print_outcome(stdout, read_outcome(run_dir));
+    if (record) run_level(entry, c, run_dir);  // refused before anything is evaluated
     try {
       checks = entry.evaluate(run_dir, c);
+      if (record) recorded = record_check(entry, c, run_dir, results_dir);
+    } catch (const io::WriteError& e) {
+      throw;
+    } catch (const CheckRefused&) {
+      throw;
     } catch (const std::exception& e) {
       throw CheckRefused(fmt::format("{}: the checks of {} cannot read the run: {}", run_dir.string(), entry.name, e.what()));
     }
@@ -390,8 +378,13 @@ int validate_check_command(const fs::path& run_dir, const std::string& case_name
     std::fflush(stdout);
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;
+  } catch (const io::WriteError& e) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "error: I/O failure: %s\n", e.what());
+    return kExitIoFailure;
   }
   print_checks(stdout, checks);
+  if (!recorded.empty()) std::printf("validate --check: result stored in %s\n", recorded.string().c_str());
   const auto failed =
       std::count_if(checks.begin(), checks.end(), [](const ValidationCheck& k) { return !k.pass && !k.report_only; });
   if (checks.empty()) std::printf("validate --check: FAIL: no checks\n");

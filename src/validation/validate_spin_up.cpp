@@ -39,6 +39,7 @@ std::vector<ValidationCheck> check_spin_up(const std::filesystem::path& run_dir,
   q.reference = "-4 pi mu omega R^2 sum exp(-lambda_n^2 nu t/R^2)";
   q.tolerance = fmt::format("within {:.3g} %", 100 * torque_tol);
   q.pass = n > 0 && std::fabs(worst) <= torque_tol;
+  q.error = worst;
   out.push_back(q);
   return out;
 }

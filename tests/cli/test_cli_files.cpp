@@ -14,6 +14,7 @@
 #include <csignal>
 #include <filesystem>
 #include <map>
+#include <regex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -268,4 +269,51 @@ TEST(CliFiles, ValidateAndGenerateWriteOnlyWhatIsTheirs) {
   const auto again = cli({"generate", "--seed", "4", "--out", (dir / "case.toml").string()});
   EXPECT_EQ(again.code, 0) << again.output;
   EXPECT_NE(read_text(dir / "case.toml").find("seed 4"), std::string::npos);
+}
+
+TEST(CliFiles, ARunDirectoryCanBeResumedAsSoonAsItHasStarted) {
+  // A checkpoint of the initial state is written before the run takes its first step, so a run
+  // stopped by a full disk (or killed) before its first scheduled checkpoint still resumes; a
+  // failure before that checkpoint removes the new directory instead.
+  const fs::path dir = fresh_dir("cli_resumable_at_start") / "run";
+  cli_test::Child child(PARTICULA_BINARY, couette(dir.string(), "1000", {"--set", "output.checkpoint_interval=500"}));
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  bool stepping = false;
+  while (!stepping && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::error_code ec;
+    if (fs::exists(dir / "log.txt", ec)) stepping = read_text(dir / "log.txt").find("  step ") != std::string::npos;
+  }
+  child.signal(SIGKILL);
+  child.wait();
+  ASSERT_TRUE(stepping) << "the run never took a step";
+  EXPECT_TRUE(fs::exists(dir / "checkpoint" / "state.bin")) << "no checkpoint before the first scheduled one";
+  const auto r = cli({"resume", dir.string(), "--quiet", "--no-plots", "--threads", "1", "--set", "time.end=0.01"});
+  EXPECT_EQ(r.code, 0) << r.output;
+}
+
+TEST(CliFiles, ResumeRefusesAnEditedCaseFileRatherThanDiscardingIt) {
+  const fs::path dir = fresh_dir("cli_resume_edited") / "run";
+  ASSERT_EQ(cli(couette(dir.string(), "0.01")).code, 0);
+  const std::string original = read_text(dir / "case.toml");
+  const auto resume = [&] {
+    return cli({"resume", dir.string(), "--quiet", "--no-plots", "--threads", "1", "--set", "time.end=0.015"});
+  };
+  // A changed viscosity: refused, naming the key, nothing written.
+  const std::string edited = std::regex_replace(original, std::regex("nu = 1e-06"), "nu = 2e-06");
+  ASSERT_NE(edited, original);
+  write_text(dir / "case.toml", edited);
+  const auto before = tree(dir.parent_path());
+  const auto r = resume();
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("case.toml was edited since the run wrote it"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("+ [fluid] nu = 2e-06"), std::string::npos) << r.output;
+  EXPECT_TRUE(tree(dir.parent_path()) == before) << "a refused resume changed the run directory";
+  // A comment is no edit of the case; a deleted case.toml is written again.
+  write_text(dir / "case.toml", "# my note\n" + original);
+  EXPECT_EQ(resume().code, 0);
+  fs::remove(dir / "case.toml");
+  const auto again = cli({"resume", dir.string(), "--quiet", "--no-plots", "--threads", "1", "--set", "time.end=0.02"});
+  EXPECT_EQ(again.code, 0) << again.output;
+  EXPECT_TRUE(fs::exists(dir / "case.toml"));
 }

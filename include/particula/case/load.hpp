@@ -46,4 +46,11 @@ real estimated_dt(const Case& c, bool capped = true);
 /// text again gives an identical Case (viscosity is always written as fluid.nu).
 std::string resolved_case_toml(const Case& c);
 
+/// The lines in which two resolved cases (resolved_case_toml texts) differ, each key line named
+/// with its table ("[fluid] nu = 1e-06"; the n-th "[[body]]" as "[[body]]#n"): first the lines
+/// of `before` that `after` lacks ("- ..."), then those of `after` that `before` lacks ("+ ..."),
+/// at most `max_lines` in all. Empty when they say the same. Comment lines are ignored.
+std::vector<std::string> resolved_case_differences(const std::string& before, const std::string& after,
+                                                   std::size_t max_lines = 8);
+
 }  // namespace particula

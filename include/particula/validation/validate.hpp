@@ -9,6 +9,7 @@
 // never includes it.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -29,6 +30,23 @@ struct ValidationCheck {
   /// A reported quantity without a pass/fail reference (e.g. the qualitative case 7.5): shown
   /// as "report" and never fails the case.
   bool report_only = false;
+  /// The signed relative deviation from the reference where the check has a numerical one
+  /// (value / reference - 1, or the error itself for an error norm); NaN otherwise. The
+  /// observed order between two levels is computed from it (docs/validation.md).
+  double error = std::nan("");
+};
+
+/// One curve of a validation plot: a run's time series or a reference's points.
+struct PlotSeries {
+  std::string label;
+  std::vector<double> x, y;
+  bool reference = false;  // published or exact data (drawn as points), else a run (a line)
+};
+
+/// The figure of a validation case: what the report draws for it (validation_plot.cpp).
+struct ValidationPlot {
+  std::string title, x_label, y_label;
+  std::vector<PlotSeries> series;
 };
 
 /// The groups of `particula validate --group`.
@@ -47,6 +65,9 @@ struct ValidationEntry {
   /// The checks of a finished run (directory and resolved case). May throw io::IoError when an
   /// output is missing or malformed (the case then fails).
   std::function<std::vector<ValidationCheck>(const std::filesystem::path& run_dir, const Case& c)> evaluate;
+  /// The case's figure from a finished run (the run's curves and the reference's); empty (no
+  /// function) for a case without one. May throw io::IoError like `evaluate`.
+  std::function<ValidationPlot(const std::filesystem::path& run_dir, const Case& c)> plot;
   /// How the two modes choose the level. Analytic cases (false): --quick runs the shipped
   /// resolution, the default twice as fine. Paper cases (true): the default runs the case file
   /// as shipped (the paper's resolution: hours), --quick adds `quick_overrides` (a coarse
@@ -132,7 +153,18 @@ struct ValidateOptions {
   /// The groups to run (empty: analytic, paper and benchmark, the suite before the robustness group was
   /// added; robustness cases are run only when asked for, by group or by --case).
   std::vector<ValidationGroup> groups;
+  /// Store each case's result (validation/record.hpp) under `results_dir`/LEVEL/NAME.toml, the
+  /// data `particula validate --report` generates docs/validation.md from.
+  bool record = false;
+  std::filesystem::path results_dir;  // empty: validation/results of the source tree
 };
+
+/// The two levels of the suite, as named in stored results and in docs/validation.md.
+inline const char* level_name(bool quick) { return quick ? "quick" : "default"; }
+
+/// The --set overrides that run `entry` at the quick or the default level (the rules of
+/// ValidationEntry), and the d0 they give. Throws what load_case throws.
+std::vector<std::string> level_overrides(const ValidationEntry& entry, bool quick, double& d0);
 
 /// Whether `entry` is run under `options` (its group is selected, or it is named by --case).
 bool entry_selected(const ValidationEntry& entry, const ValidateOptions& options);
@@ -149,7 +181,11 @@ int validate_command(const ValidateOptions& options);
 /// printed to standard output with their values, references, tolerances and verdicts. Exit 0
 /// when every check passes, 1 when one fails, 2 on bad input (DIR not a run directory, an
 /// unknown NAME, a case with no entry, outputs the checks cannot read: the message names DIR).
-int validate_check_command(const std::filesystem::path& run_dir, const std::string& case_name);
+/// With `record`, the result is then stored under `results_dir` (empty: the source tree's
+/// validation/results) at the level whose resolution the run has (exit 2, nothing stored, when
+/// it has neither level's d0).
+int validate_check_command(const std::filesystem::path& run_dir, const std::string& case_name, bool record = false,
+                           const std::filesystem::path& results_dir = {});
 
 /// The source tree the suite reads its case files and references from (cases/, reference/).
 const std::filesystem::path& source_dir();
