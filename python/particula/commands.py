@@ -7,7 +7,9 @@ import tomllib
 from . import _core
 from . import errors
 from .arguments import threads_argument
+from .case import case_source
 from .overrides import override_list
+from .progress import Progress
 
 
 class RunResult:
@@ -50,14 +52,18 @@ def _finish(code, text, run_dir, quiet, check):
     raise _ERRORS.get(code, errors.InternalError)(message, run_dir=run_dir)
 
 
-def load_case(case_file, overrides=None):
+def load_case(case, overrides=None):
     """The case as particula resolves it (every default filled in, overrides applied), as a
-    dict: what a run directory's case.toml holds. Raises CaseError with the CLI's message."""
-    return tomllib.loads(_core.resolved_case(os.fspath(case_file), override_list(overrides)))
+    dict: what a run directory's case.toml holds. case: a case file's path or a particula.Case.
+    Raises CaseError with the CLI's message."""
+    source, text = case_source(case)
+    if text is not None:
+        return tomllib.loads(_core.resolved_case_text(text, source, override_list(overrides)))
+    return tomllib.loads(_core.resolved_case(source, override_list(overrides)))
 
 
-def run_case(case_file, out=None, overrides=None, *, threads=None, backend="cpu", overwrite=False, quiet=True,
-             plots=True, check=True):
+def run_case(case, out=None, overrides=None, *, threads=None, backend="cpu", overwrite=False, quiet=True,
+             plots=True, check=True, progress=None):
     """Runs a case into a run directory exactly as
     `particula run CASE --out OUT --set k=v ... [--threads N] [--backend B] [--overwrite]` does
     (same files, same exit codes, same rules for --overwrite), and returns a RunResult.
@@ -65,7 +71,12 @@ def run_case(case_file, out=None, overrides=None, *, threads=None, backend="cpu"
     out: the run directory (default runs/<case name>, relative to the working directory);
     overrides: {key: value} or ["key=value", ...] (particula.overrides.toml_value);
     quiet: no progress line (the runner's messages are printed when it is False or on failure);
+    case: a case file's path, or a particula.Case (or a dict of a case file's keys);
     plots: draw DIR/plots/*.png at the end (tools/plot_run.py), as the CLI does;
+    progress: True for a progress bar (tqdm when installed; the default unless quiet), False for
+    none, or a callable progress(time, t_end, step) called every quarter second of wall time
+    and after the last step; an exception it raises stops the run as Ctrl-C does (outputs and a
+    checkpoint written: particula.resume continues it) and is then raised;
     threads: as Simulation's (None: OpenMP's default; else 1 .. particula.MAX_THREADS).
     A failed run raises the exception of its exit code (particula.errors; with check=False a
     numerical failure returns a RunResult with exit_code 3 instead). One run at a time per
@@ -73,19 +84,34 @@ def run_case(case_file, out=None, overrides=None, *, threads=None, backend="cpu"
     """
     threads = threads_argument(threads)
     sets = override_list(overrides)
+    source, case_text = case_source(case)
     # The case is loaded first (the runner loads it again): a mistake in it raises CaseError with
     # the file, line and key as attributes, and the default run directory is known.
-    name = load_case(case_file, sets)["name"]
+    name = load_case(case, sets)["name"]
     run_dir = os.fspath(out) if out is not None else os.path.join("runs", name)
-    code, text = _core.run_command(os.fspath(case_file), run_dir, sets, threads, backend,
-                                   overwrite, quiet, plots)
+    tell = Progress.beside_captured_stderr(not quiet if progress is None else progress, name)
+    try:
+        code, text = _core.run_command(source, run_dir, sets, threads, backend, overwrite,
+                                       quiet or progress is True or (progress is None and not quiet), plots,
+                                       case_text=case_text, progress=tell.callback)
+    finally:
+        tell.close()
     return _finish(code, text, run_dir, quiet, check)
 
 
-def resume(run_dir, overrides=None, *, threads=None, backend="cpu", quiet=True, plots=True, check=True):
+def resume(run_dir, overrides=None, *, threads=None, backend="cpu", quiet=True, plots=True, check=True,
+           progress=None):
     """Continues a run from run_dir/checkpoint/state.bin exactly as `particula resume` does;
-    overrides may change only time.end and output.* keys. Returns a RunResult."""
-    code, text = _core.resume_command(os.fspath(run_dir), override_list(overrides), threads_argument(threads),
-                                      backend, quiet, plots)
+    overrides may change only time.end and output.* keys; progress as for run_case. Returns a
+    RunResult."""
+    threads = threads_argument(threads)
+    sets = override_list(overrides)
+    tell = Progress.beside_captured_stderr(not quiet if progress is None else progress, os.fspath(run_dir))
+    try:
+        code, text = _core.resume_command(os.fspath(run_dir), sets, threads, backend,
+                                          quiet or progress is True or (progress is None and not quiet), plots,
+                                          progress=tell.callback)
+    finally:
+        tell.close()
     return _finish(code, text, os.fspath(run_dir), quiet, check)
 

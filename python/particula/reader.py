@@ -53,6 +53,18 @@ class Table(dict):
         """The rows where mask (a boolean array) is true, as a Table."""
         return Table({k: v[mask] for k, v in self.items()}, self.units, self.path)
 
+    def to_pandas(self):
+        """The table as a pandas.DataFrame (pandas is optional: ImportError saying so when it is
+        missing); the units are in its attrs["units"]."""
+        try:
+            import pandas
+        except ImportError:
+            raise ImportError("Table.to_pandas needs pandas (pip install pandas, or apt-get install "
+                              "python3-pandas); the columns are NumPy arrays without it") from None
+        frame = pandas.DataFrame({k: v for k, v in self.items()})
+        frame.attrs["units"] = dict(self.units)
+        return frame
+
 
 def _is_number(text):
     try:
@@ -222,9 +234,15 @@ class Run:
     run still going) are None / empty."""
 
     def __init__(self, path):
+        path = os.fspath(path)
         if not os.path.isdir(path):
             raise FileNotFoundError("run directory '%s' does not exist" % path)
-        self.dir = os.fspath(path)
+        if not os.path.exists(os.path.join(path, "case.toml")) and \
+                not os.path.exists(os.path.join(path, ".particula-run")):
+            from .errors import InputError
+            raise InputError("'%s' is not a particula run directory (it has no case.toml; run directories are "
+                             "made by particula.run_case or `particula run`)" % path)
+        self.dir = path
         self.case = self._toml("case.toml")
         self.summary = self._json("summary.json")
         self.bodies = self._csv("bodies.csv")
@@ -261,20 +279,44 @@ class Run:
         p = self._path(name)
         return read_csv(p) if p else None
 
-    def body(self, index):
-        """The rows of bodies.csv for the body of case index `index`, a Table."""
-        return self.bodies.where(self.bodies["body"] == index)
+    def _group_index(self, kind, which):
+        """The case index of the body or wall `which` (its index or its name); KeyError naming
+        the valid ones otherwise."""
+        groups = self.case.get(kind, [])
+        names = [g.get("name", "") for g in groups]
+        if isinstance(which, str):
+            if which in names and which:
+                return names.index(which)
+        elif isinstance(which, (int, np.integer)) and not isinstance(which, bool) and 0 <= which < len(groups):
+            return int(which)
+        if not groups:
+            raise KeyError("%r: the case of %s has no %s" % (which, self.dir, kind))
+        named = ", ".join("%d %r" % (i, n) if n else str(i) for i, n in enumerate(names))
+        raise KeyError("%r: no %s of that index or name in %s (the %ss are %s)" % (which, kind, self.dir, kind, named))
 
-    def wall(self, index):
-        """The rows of walls.csv for the wall of case index `index`, a Table."""
-        return self.walls.where(self.walls["wall"] == index)
+    def _rows(self, table, file, column, index):
+        if table is None:
+            raise KeyError("%s has no %s (the run wrote none)" % (self.dir, file))
+        return table.where(table[column] == index)
 
-    def coefficient(self, index):
-        """The rows of coefficients.csv (re, re_body, cd, cl, cm) for the body of case index `index`."""
-        return self.coefficients.where(self.coefficients["body"] == index)
+    def body(self, which):
+        """The rows of bodies.csv for a body, by case index or name, a Table; KeyError for an
+        unknown body."""
+        return self._rows(self.bodies, "bodies.csv", "body", self._group_index("body", which))
+
+    def wall(self, which):
+        """The rows of walls.csv for a wall, by case index or name, a Table."""
+        return self._rows(self.walls, "walls.csv", "wall", self._group_index("wall", which))
+
+    def coefficient(self, which):
+        """The rows of coefficients.csv (re, re_body, cd, cl, cm) for a body, by case index or name."""
+        return self._rows(self.coefficients, "coefficients.csv", "body", self._group_index("body", which))
 
     def probe(self, name):
         """A probe as arrays: time (nt,), x and y (np,), and each other column (nt, np)."""
+        if name not in self.probes:
+            raise KeyError("%r: no probe of that name in %s (the probes are %s)" % (name, self.dir,
+                                                                                   ", ".join(self.probes) or "none"))
         t = self.probes[name]
         times = np.unique(t["time"])
         npts = t.rows // max(1, len(times))

@@ -23,7 +23,9 @@ import tomllib
 
 from . import _core
 from .arguments import seconds_argument, threads_argument
+from .case import case_source
 from .overrides import override_list
+from .progress import Progress
 
 KIND_FLUID = 0
 KIND_BOUNDARY = 1  # a wall or body surface particle
@@ -35,15 +37,17 @@ class Simulation:
     `particula run` does, without a run directory.
 
     Simulation("cases/couette.toml", {"resolution.d0": 1e-4}) raises CaseError (a ValueError)
-    with the CLI's message for a mistake in the file or an override. backend: "cpu" or "cuda";
+    with the CLI's message for a mistake in the file or an override. The case is a case file's
+    path or a particula.Case (or a dict of a case file's keys). backend: "cpu" or "cuda";
     threads: OpenMP threads for the whole process, an integer in [1, particula.MAX_THREADS]
     (None: as set before, by default OMP_NUM_THREADS or all cores; an OMP_NUM_THREADS beyond
     that range raises InputError). A wrong type raises TypeError, a count out of range ValueError.
     """
 
-    def __init__(self, case_file, overrides=None, *, backend="cpu", threads=None):
-        self._sim = _core.Simulation.from_case(os.fspath(case_file), override_list(overrides), backend,
-                                               threads_argument(threads))
+    def __init__(self, case, overrides=None, *, backend="cpu", threads=None):
+        source, text = case_source(case)
+        self._sim = _core.Simulation.from_case(source, override_list(overrides), backend, threads_argument(threads),
+                                               case_text=text)
 
     @classmethod
     def from_checkpoint(cls, file, overrides=None, *, backend="cpu", threads=None):
@@ -73,12 +77,20 @@ class Simulation:
         positive number that advances the time (else ValueError; not a number: TypeError)."""
         return self._sim.step(seconds_argument("max_dt", max_dt))
 
-    def run_to(self, t):
+    def run_to(self, t, progress=False):
         """Steps until time t (s), the last step shortened to land on t; returns the number of
         steps taken (0 when t is the current time). Ctrl-C stops it between two steps
-        (KeyboardInterrupt). t: finite and not before the current time (else ValueError; not a
-        number: TypeError)."""
-        return self._sim.run_to(seconds_argument("t", t))
+        (KeyboardInterrupt; the state is that after the last whole step: write_checkpoint keeps
+        it). t: finite and not before the current time (else ValueError; not a number:
+        TypeError). progress: True for a progress bar (tqdm when installed), or a callable
+        progress(time, t, step) called every quarter second of wall time and after the last
+        step (an exception it raises stops run_to between two steps and is raised)."""
+        t = seconds_argument("t", t)
+        tell = Progress(progress, "%s to t = %g s" % (self.name, t))
+        try:
+            return self._sim.run_to(t, progress=tell.callback)
+        finally:
+            tell.close()
 
     @property
     def time(self):

@@ -9,6 +9,7 @@
 
 #include <cstdio>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -79,9 +80,43 @@ std::pair<int, std::string> captured(F command) {
   return {code, capture.text()};
 }
 
+/// A Python progress callable as the runner's ProgressCallback: called with the GIL as
+/// callback(time, t_end, step); an exception it raises stops the run (as Ctrl-C would: outputs
+/// and a checkpoint written) and is kept in `raised` to be raised again once the run has ended.
+class PythonProgress {
+ public:
+  explicit PythonProgress(py::object callback) : callback_(std::move(callback)) {}
+  ProgressCallback callback() {
+    if (callback_.is_none()) return {};
+    return [this](double t, double t_end, std::int64_t step) {
+      py::gil_scoped_acquire gil;
+      try {
+        callback_(t, t_end, step);
+        return true;
+      } catch (py::error_already_set& e) {
+        raised_ = std::move(e);
+        return false;
+      }
+    };
+  }
+  /// Raises what the callable raised, if it did (with the GIL held).
+  void raise_if_raised() {
+    if (raised_) {
+      py::error_already_set e = std::move(*raised_);
+      raised_.reset();
+      throw e;
+    }
+  }
+
+ private:
+  py::object callback_;
+  std::optional<py::error_already_set> raised_;
+};
+
 std::pair<int, std::string> run(const fs::path& case_file, const fs::path& out,
                                 const std::vector<std::string>& overrides, int threads,
-                                const std::string& backend, bool overwrite, bool quiet, bool plots) {
+                                const std::string& backend, bool overwrite, bool quiet, bool plots,
+                                std::optional<std::string> case_text, py::object progress) {
   RunOptions opt;
   opt.out_dir = out;
   opt.overrides = overrides;
@@ -90,12 +125,18 @@ std::pair<int, std::string> run(const fs::path& case_file, const fs::path& out,
   opt.overwrite = overwrite;
   opt.quiet = quiet;
   opt.plots = plots;
+  opt.case_text = std::move(case_text);
+  PythonProgress tell(std::move(progress));
+  opt.progress = tell.callback();
   check_threads(threads);
-  return captured([&] { return run_command(case_file, opt); });
+  auto result = captured([&] { return run_command(case_file, opt); });
+  tell.raise_if_raised();
+  return result;
 }
 
 std::pair<int, std::string> resume(const fs::path& dir, const std::vector<std::string>& overrides,
-                                   int threads, const std::string& backend, bool quiet, bool plots) {
+                                   int threads, const std::string& backend, bool quiet, bool plots,
+                                   py::object progress) {
   ResumeOptions opt;
   opt.run_dir = dir;
   opt.overrides = overrides;
@@ -103,8 +144,12 @@ std::pair<int, std::string> resume(const fs::path& dir, const std::vector<std::s
   opt.backend = backend;
   opt.quiet = quiet;
   opt.plots = plots;
+  PythonProgress tell(std::move(progress));
+  opt.progress = tell.callback();
   check_threads(threads);
-  return captured([&] { return resume_command(opt); });
+  auto result = captured([&] { return resume_command(opt); });
+  tell.raise_if_raised();
+  return result;
 }
 
 }  // namespace
@@ -117,11 +162,19 @@ void register_commands(py::module_& m) {
       },
       py::arg("case_file"), py::arg("overrides"),
       "load_case: the resolved case as TOML text (raises CaseError)");
+  m.def(
+      "resolved_case_text",
+      [](const std::string& text, const fs::path& source, const std::vector<std::string>& overrides) {
+        return resolved_case_toml(load_case_text(text, source, overrides));
+      },
+      py::arg("text"), py::arg("source"), py::arg("overrides"),
+      "a case's TOML text resolved as load_case resolves a file (raises CaseError naming `source`)");
   m.def("run_command", &run, py::arg("case_file"), py::arg("out"), py::arg("overrides"), py::arg("threads"),
         py::arg("backend"), py::arg("overwrite"), py::arg("quiet"), py::arg("plots"),
+        py::arg("case_text") = std::nullopt, py::arg("progress") = py::none(),
         "`particula run`: (exit code, standard error text)");
   m.def("resume_command", &resume, py::arg("run_dir"), py::arg("overrides"), py::arg("threads"),
-        py::arg("backend"), py::arg("quiet"), py::arg("plots"),
+        py::arg("backend"), py::arg("quiet"), py::arg("plots"), py::arg("progress") = py::none(),
         "`particula resume`: (exit code, standard error text)");
 }
 

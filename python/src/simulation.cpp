@@ -9,6 +9,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -87,10 +88,11 @@ void prepare(const std::string& backend, int threads) {
 /// `particula run`'s set-up without the run directory: the case with its overrides, the size
 /// guard, the scene and a fresh solver.
 std::unique_ptr<Simulation> from_case(const fs::path& file, const std::vector<std::string>& overrides,
-                                      const std::string& backend, int threads) {
+                                      const std::string& backend, int threads,
+                                      const std::optional<std::string>& text = std::nullopt) {
   prepare(backend, threads);
   auto sim = std::make_unique<Simulation>();
-  sim->c = load_case(file, overrides);
+  sim->c = text ? load_case_text(*text, file, overrides) : load_case(file, overrides);
   check_case_size(sim->c);  // before anything is allocated
   sim->case_hash = case_identity_hash(resolved_case_toml(sim->c));
   Scene scene = build_scene(sim->c);
@@ -185,7 +187,7 @@ real step(Simulation& sim, real max_dt) {
 /// Steps until time t, the last step shortened to land on it (as the run loop lands on time.end);
 /// Ctrl-C is honoured between steps. Returns the number of steps taken. t is finite and not before
 /// the current time.
-std::int64_t run_to(Simulation& sim, real t) {
+std::int64_t run_to(Simulation& sim, real t, const py::object& progress) {
   const Exclusive only(sim);
   const real now = sim.solver->time();
   if (!std::isfinite(t) || t < now)
@@ -193,9 +195,17 @@ std::int64_t run_to(Simulation& sim, real t) {
         fmt::format("run_to: t = {} s: must be a finite time not before the current t = {} s", t, now));
   const std::int64_t first = sim.solver->step_count();
   const real eps = 1e-9 * std::abs(t);
+  auto due = std::chrono::steady_clock::now();
   while (sim.solver->time() < t - eps) {
     step_held(sim, 0, t);
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    // progress(time, t, step) every kProgressInterval s of wall time and after the last step
+    const auto now = std::chrono::steady_clock::now();
+    if (!progress.is_none() && (now >= due || sim.solver->time() >= t - eps)) {
+      progress(sim.solver->time(), t, sim.solver->step_count());
+      due = now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double>(kProgressInterval));
+    }
   }
   return sim.solver->step_count() - first;
 }
@@ -330,13 +340,13 @@ void register_simulation(py::module_& m) {
   m.attr("MAX_THREADS") = kMaxThreads;
   py::class_<Simulation> cls(m, "Simulation", "A case built into a solver (use particula.Simulation)");
   cls.def_static("from_case", &from_case, py::arg("case_file"), py::arg("overrides"), py::arg("backend"),
-                 py::arg("threads"))
+                 py::arg("threads"), py::arg("case_text") = std::nullopt)
       .def_static("from_checkpoint", &from_checkpoint, py::arg("file"), py::arg("overrides"),
                   py::arg("backend"), py::arg("threads"))
       .def("write_checkpoint", &write_simulation_checkpoint, py::arg("file"))
       .def(
           "step", [](Simulation& sim, real max_dt) { return step(sim, max_dt); }, py::arg("max_dt") = 0.0)
-      .def("run_to", &run_to, py::arg("t"))
+      .def("run_to", &run_to, py::arg("t"), py::arg("progress") = py::none())
       .def_property_readonly("time", [](const Simulation& s) { return s.idle().time(); })
       .def_property_readonly("step_count", [](const Simulation& s) { return s.idle().step_count(); })
       .def_property_readonly("dt", [](const Simulation& s) { return s.idle().last_dt(); })

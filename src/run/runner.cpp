@@ -143,6 +143,14 @@ void report_removed_bodies(const Solver& solver, Reporter& rep) {
                     solver.params().open_specs[r.zone].name, r.fill_particles, r.fill_mass));
 }
 
+/// The caller's progress callback, when it is due (every kProgressInterval s of wall time, and
+/// after the last step); it may ask the run to stop.
+void tell_caller(Session& s, double wall, bool last) {
+  if (!s.progress || (!last && wall < s.next_progress_wall)) return;
+  s.next_progress_wall = wall + kProgressInterval;
+  if (!s.progress(s.solver->time(), s.c.t_end, s.solver->step_count())) s.stopped_by_caller = true;
+}
+
 /// Steps to time.end, writing the outputs on their schedule and a checkpoint every
 /// output.checkpoint_interval; stops on max_steps, a signal or a failure (recorded in `end`).
 void step_to_end(Session& s, Reporter& rep, OutputWriter& write_outputs, io::ProgressLine& progress,
@@ -160,7 +168,7 @@ void step_to_end(Session& s, Reporter& rep, OutputWriter& write_outputs, io::Pro
       end.status = "max_steps";
       break;
     }
-    if (stop_requested() || write_outputs.cancelled) {
+    if (stop_requested() || write_outputs.cancelled || s.stopped_by_caller) {
       end.status = "interrupted";
       end.exit_code = 130;
       break;
@@ -180,6 +188,7 @@ void step_to_end(Session& s, Reporter& rep, OutputWriter& write_outputs, io::Pro
     const double wall = stats.wall_seconds();
     progress.update(solver.step_count(), solver.time(), c.t_end, solver.last_dt(),
                     wall > 0 ? stats.particle_steps / wall : 0);
+    tell_caller(s, wall, solver.time() >= c.t_end - eps);
   }
 }
 
@@ -380,7 +389,7 @@ int run_command(const fs::path& case_file, const RunOptions& opt) {
   SignalGuard signals;
   std::unique_ptr<RunDirectory> run_dir;
   try {
-    s.c = load_case(case_file, opt.overrides);
+    s.c = opt.case_text ? load_case_text(*opt.case_text, case_file, opt.overrides) : load_case(case_file, opt.overrides);
     check_case_size(s.c);  // before anything is allocated or written
     s.case_hash = case_identity_hash(resolved_case_toml(s.c));
     run_dir = std::make_unique<RunDirectory>(opt.out_dir.empty() ? fs::path("runs") / s.c.name : opt.out_dir,
@@ -388,6 +397,7 @@ int run_command(const fs::path& case_file, const RunOptions& opt) {
     s.dir = run_dir->path();
     s.run_dir = run_dir.get();
     s.overrides = opt.overrides;
+    s.progress = opt.progress;
   } catch (const CaseError& e) {
     return bad_input(e);
   } catch (const RunDirRefused& e) {
@@ -601,6 +611,7 @@ int resume_command(const ResumeOptions& opt) {
   if (!read_resume_state(opt, file, *marker, s, k)) return 2;
   s.dir = opt.run_dir;
   s.overrides = opt.overrides;
+  s.progress = opt.progress;
   s.case_hash = k.case_hash;
   s.resumed = true;
   s.t_start = k.time;

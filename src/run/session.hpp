@@ -17,6 +17,7 @@
 #include "particula/case/case.hpp"
 #include "particula/io/json.hpp"
 #include "particula/run/run_dir.hpp"
+#include "particula/run/runner.hpp"
 #include "particula/solver/solver.hpp"
 
 namespace particula::run_detail {
@@ -55,6 +56,9 @@ struct Session {
   real t_start = 0;
   std::vector<std::string> overrides;  // the --set list of this command
   RunStats stats;
+  ProgressCallback progress;        // the caller's, or empty
+  double next_progress_wall = 0;    // wall seconds of the run when it is due next
+  bool stopped_by_caller = false;   // the progress callback asked the run to stop
 };
 
 /// How a run ended, for summary.json: status, exit code and, for exit 3, the failure.

@@ -4,6 +4,8 @@ import os
 import subprocess
 import sys
 
+import pytest
+
 from conftest import ROOT
 
 EXAMPLES = os.path.join(ROOT, "examples", "python")
@@ -34,3 +36,16 @@ def test_run_and_plot_field(tmp_path):
     assert "2 snapshots of 19783 particles; the last at t = 0.005 s" in out
     for png in ("fields.png", "settling.png"):
         assert (tmp_path / png).stat().st_size > 10000, png
+
+
+def test_settling_circles(tmp_path):
+    out = run_example("settling_circles.py", "--out", str(tmp_path), "--jobs", "2")
+    with open(tmp_path / "settling.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert [int(r["circles"]) for r in rows] == [1, 5]
+    assert all(r["exit_code"] == "0" for r in rows)
+    fractions = [float(r["area_fraction"]) for r in rows]
+    assert fractions[1] == pytest.approx(5 * fractions[0]) and fractions[0] > 0
+    assert all(float(r["mean_settling_speed"]) > 0 for r in rows), out  # they fall
+    assert (tmp_path / "settling.png").stat().st_size > 10000
+    assert (tmp_path / "n_5" / "case.toml").read_text().count("[[body]]") == 5
