@@ -59,6 +59,8 @@ class CMakeBuild(build_ext):
 
 setup(
     version=project_version(),
+    package_dir={"": "python"},
+    packages=["particula"],
     ext_modules=[Extension("particula._core", sources=[])],
     cmdclass={"build_ext": CMakeBuild},
     data_files=[("bin", [CLI])],
