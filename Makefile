@@ -1,20 +1,28 @@
 # Thin wrapper around CMake presets. The README's two commands:
-#   make demo   installs what is missing, builds Release, runs the demo case
-#   make test   installs what is missing, builds Release, runs the tests (CTest)
+#   make demo   installs what is missing, builds the Release CLI, runs the demo case
+#   make test   installs what is missing, builds all of Release, runs the tests (CTest)
 JOBS ?= $(shell nproc)
 
-.PHONY: deps build demo test test-sanitize bench bench-cases bench-bodies clean
+.PHONY: deps configure build build-cli demo test test-sanitize bench bench-cases bench-bodies clean
 
 deps:
 	scripts/install-deps
 
-build: deps
+configure: deps
 	cmake --preset release
+
+# Everything: the CLI, the Python module, the test programs and the benchmarks.
+build: configure
 	cmake --build --preset release -j $(JOBS)
+
+# The CLI alone (its libraries), all that the demo runs: its plots are drawn by tools/plot_run.py,
+# which reads the run with python/particula/reader.py from the source tree, no build needed.
+build-cli: configure
+	cmake --build --preset release -j $(JOBS) --target particula
 
 # Paper case 7.2 (a cylinder settling in a closed box) at the coarsest level the body-size check
 # allows (10 particles across the cylinder), up to 0.5 s, when it has reached its terminal speed.
-demo: build
+demo: build-cli
 	./build/release/particula run cases/falling_cylinder.toml --out runs/demo --overwrite \
 	    --set resolution.d0=2.5e-4 --set time.end=0.5
 	@echo "demo: see runs/demo/plots/bodies.png (settling velocity against Glowinski et al. 2001) and runs/demo/summary.json"

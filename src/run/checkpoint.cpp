@@ -403,10 +403,12 @@ void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c) {
 }
 
 void write_checkpoint(const std::filesystem::path& file, const CheckpointView& c) {
-  std::error_code ec;
-  std::filesystem::create_directories(file.parent_path(), ec);
-  if (ec)
-    throw io::WriteError(fmt::format("cannot create '{}': {}", file.parent_path().string(), ec.message()));
+  // A bare file name ("state.bin") has no parent to create: it goes into the working directory.
+  if (const std::filesystem::path dir = file.parent_path(); !dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw io::WriteError(fmt::format("cannot create '{}': {}", dir.string(), ec.message()));
+  }
   io::write_file_atomic(file, encode_checkpoint(c));
 }
 

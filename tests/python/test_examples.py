@@ -9,6 +9,11 @@ import pytest
 from conftest import ROOT
 
 EXAMPLES = os.path.join(ROOT, "examples", "python")
+RUN_HERE = ["run_and_plot_field.py", "settling_circles.py", "sweep_terminal_speed.py"]  # each by a test below
+
+
+def test_every_example_is_run_here():
+    assert sorted(f for f in os.listdir(EXAMPLES) if f.endswith(".py")) == RUN_HERE
 
 
 def run_example(name, *args):

@@ -3,6 +3,7 @@ constructors with random arguments of random types, in batches, each batch in a 
 It fails on a crash (a signal) and on any exception outside the documented ones: TypeError for a
 wrong type, ValueError (InputError, CaseError) for a wrong value, NumericalFailure, IoFailure."""
 import json
+import os
 
 import pytest
 
@@ -10,7 +11,8 @@ from conftest import HYDROSTATIC, case
 from subprocess_run import run_python
 
 SEED = 20240611
-BATCHES, CALLS = 4, 50  # 200 calls
+# 200 calls in CI; PARTICULA_FUZZ_BATCHES=20 for the 1,000 of a longer check (same seeds first).
+BATCHES, CALLS = int(os.environ.get("PARTICULA_FUZZ_BATCHES", "4")), 50
 
 CHILD = r"""
 import atexit, json, math, os, random, shutil, tempfile

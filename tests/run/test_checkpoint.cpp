@@ -206,6 +206,21 @@ TEST(Checkpoint, RoundTripKeepsEveryFieldBitwise) {
   EXPECT_EQ(encode_checkpoint(r), encode_checkpoint(c));
 }
 
+TEST(Checkpoint, ABareFileNameIsWrittenIntoTheWorkingDirectory) {
+  const fs::path dir = scratch() / "bare";
+  fs::create_directories(dir);
+  const fs::path before = fs::current_path();
+  fs::current_path(dir);
+  try {
+    write_checkpoint("state.bin", sample());  // no parent directory to create
+  } catch (...) {
+    fs::current_path(before);
+    throw;
+  }
+  fs::current_path(before);
+  EXPECT_EQ(encode_checkpoint(read_checkpoint(dir / "state.bin")), encode_checkpoint(sample()));
+}
+
 TEST(Checkpoint, WrongMagicIsRefused) {
   std::string bytes = encode_checkpoint(sample());
   bytes[0] = 'X';
