@@ -23,6 +23,7 @@ CASE, SMALL, SEED, CALLS = %r, %r, %d, %d
 rng = random.Random(SEED)
 tmp = tempfile.mkdtemp(prefix="particula-fuzz-")
 atexit.register(shutil.rmtree, tmp, ignore_errors=True)
+os.chdir(tmp)  # a bare file name the fuzz writes to ends up here, not in the caller's directory
 saved = os.path.join(tmp, "state.bin")
 not_a_checkpoint = os.path.join(tmp, "case.toml")  # a copy: the fuzz may write over it
 with open(CASE) as src, open(not_a_checkpoint, "w") as dst:
