@@ -24,6 +24,23 @@ using cli_test::read_text;
 
 namespace {
 
+/// Waits (up to two minutes) until the running run has written a periodic checkpoint, one after
+/// t = 0 (the run writes one of its initial state before its first step); false if it never does.
+bool wait_for_periodic_checkpoint(const fs::path& state) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::error_code ec;
+    if (fs::exists(state, ec)) {
+      try {
+        if (particula::read_checkpoint(state).time > 0) return true;
+      } catch (const std::exception&) {  // replaced while read: try again
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return false;
+}
+
 const fs::path kCouette = fs::path(PARTICULA_SOURCE_DIR) / "cases" / "couette.toml";
 
 /// `run` arguments for a coarse couette run into `out`, one thread (bitwise comparisons).
@@ -134,10 +151,7 @@ TEST(Resume, RunInterruptedBySigintResumesBitwiseIdentical) {
 
   cli_test::Child child(PARTICULA_BINARY, couette(dir / "cut", "1.5", {"--set", "output.checkpoint_interval=0.02"}));
   const fs::path state = dir / "cut" / "checkpoint" / "state.bin";
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (!fs::exists(state) && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  ASSERT_TRUE(fs::exists(state)) << "no periodic checkpoint";
+  ASSERT_TRUE(wait_for_periodic_checkpoint(state)) << "no periodic checkpoint";
   child.signal(SIGINT);
   const auto cut = child.wait();
   ASSERT_EQ(cut.code, 130) << cut.output;
@@ -156,9 +170,7 @@ TEST(Resume, SigtermAlsoInterruptsWithACheckpoint) {
   const fs::path dir = fresh_dir("resume_sigterm");
   cli_test::Child child(PARTICULA_BINARY, couette(dir / "run", "1.5", {"--set", "output.checkpoint_interval=0.02"}));
   const fs::path state = dir / "run" / "checkpoint" / "state.bin";
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (!fs::exists(state) && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_TRUE(wait_for_periodic_checkpoint(state)) << "no periodic checkpoint";
   child.signal(SIGTERM);
   const auto r = child.wait();
   EXPECT_EQ(r.code, 130) << r.output;
