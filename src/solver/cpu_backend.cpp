@@ -103,7 +103,7 @@ void CpuBackend::geometry_sweep(SolverCounters& cnt) {
     bad_B += g.B_ok ? 0 : 1;
     bad_Bhat += g.Bhat_ok ? 0 : 1;
     sparse += g.sparse ? 1 : 0;
-    // P.18 normal; on failure the analytic normal set by place_boundary stays.
+    // P.18 normal; on failure the analytic normal set by the surfaces' placement stays.
     if (i < nb && kernel_normals && P_.kind[i] == Kind::Boundary && !kernel_normal(g.normal_sum, P_.normal[i]))
       ++bad_normal;
   }
