@@ -129,9 +129,9 @@ const CellGrid& CudaBackend::host_grid(const Particles& P) {
   return host_grid_;
 }
 
-const CellGrid& CudaBackend::band_grid(const std::vector<Vec2>& x) {
+HostNeighbors CudaBackend::band_neighbors(const std::vector<Vec2>& x) {
   band_grid_.bin(x);
-  return band_grid_;
+  return HostNeighbors{nullptr, &band_grid_, kernel_.h * kernel_.h};
 }
 
 void CudaBackend::device_geometry(SolverCounters& cnt) {

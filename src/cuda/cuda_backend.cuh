@@ -70,7 +70,7 @@ class CudaBackend final : public Backend {
   /// The neighbour list, volumes and geometry sweep on the device (refresh_geometry's work).
   void device_geometry(SolverCounters& cnt);
   const CellGrid& host_grid(const Particles& P) override;
-  const CellGrid& band_grid(const std::vector<Vec2>& x) override;
+  HostNeighbors band_neighbors(const std::vector<Vec2>& x) override;
   /// Nothing to do: the device's list build already leaves the pairs of two buffer particles out
   /// of min_distance (device_geometry).
   void skip_buffer_pairs_in_min_distance() override {}

@@ -112,7 +112,8 @@ int LoadBand::near_solids(const BandScene& s, Vec2 x, real reach, NearSolid* out
   return count;
 }
 
-real LoadBand::cell_area(const BandScene& s, std::size_t i, const std::vector<Vec2>& x, const CellGrid& grid) const {
+real LoadBand::cell_area(const BandScene& s, std::size_t i, const std::vector<Vec2>& x,
+                         const HostNeighbors& nbrs) const {
   const std::size_t nb = s.particles.n_boundary;
   Vec2 d[kVoronoiMaxVertices - 4];
   int count = 0;
@@ -124,13 +125,11 @@ real LoadBand::cell_area(const BandScene& s, std::size_t i, const std::vector<Ve
     }
     d[count++] = s.domain.separation(x[j], x[i]);
   };
-  // the neighbours within h in the order of the step's neighbour list (visit_neighbors)
-  visit_neighbors(grid.geometry(), s.prm.h * s.prm.h, x.data(), grid.sorted().data(), grid.cell_start().data(),
-                  grid.cell_of()[i], static_cast<std::uint32_t>(i), [&](std::uint32_t j, real) { take(j); });
+  nbrs.visit(x.data(), static_cast<std::uint32_t>(i), take);
   return closed_by_fluid ? voronoi_cell_area(d, count, s.prm.h) : 0;
 }
 
-void LoadBand::build_entries(const BandScene& s, const std::vector<Vec2>& x, const CellGrid& grid, std::size_t f0,
+void LoadBand::build_entries(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs, std::size_t f0,
                              std::size_t f1, std::vector<BandEntry>& part) {
   constexpr int kMaxNear = 16;
   const real reach = kLoadBandReach * s.prm.h;
@@ -143,7 +142,7 @@ void LoadBand::build_entries(const BandScene& s, const std::vector<Vec2>& x, con
   for (std::size_t f = f0; f < f1; ++f) {
     const int count = in_load_band(s, nb + f) ? near_solids(s, x[nb + f], reach, near, kMaxNear) : 0;
     if (count == 0) continue;
-    const real area = cell_area(s, nb + f, x, grid);
+    const real area = cell_area(s, nb + f, x, nbrs);
     weigh_near_solids(near, count, reach);
     real S;
     Vec2 gradS;
@@ -173,7 +172,7 @@ void LoadBand::build_entries(const BandScene& s, const std::vector<Vec2>& x, con
   }
 }
 
-void LoadBand::build(const BandScene& s, const std::vector<Vec2>& x, const CellGrid& grid, Backend& backend) {
+void LoadBand::build(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs, Backend& backend) {
   ++builds_;
   const std::size_t nb = s.particles.n_boundary, nf = x.size() - nb;
   bin_bodies(s, kLoadBandReach * s.prm.h);
@@ -194,7 +193,7 @@ void LoadBand::build(const BandScene& s, const std::vector<Vec2>& x, const CellG
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()),
                       nt = static_cast<std::size_t>(omp_get_num_threads());
     std::vector<BandEntry>& part = parts_[t];
-    build_entries(s, x, grid, nf * t / nt, nf * (t + 1) / nt, part);
+    build_entries(s, x, nbrs, nf * t / nt, nf * (t + 1) / nt, part);
     part_first_[t + 1] = part.size();
 #pragma omp barrier
 #pragma omp single

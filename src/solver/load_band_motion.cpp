@@ -28,7 +28,7 @@ void LoadBand::update(const BandScene& s, Backend& backend, bool reordered) {
       angle_ = built_.angle;
       grid_.setup(s.domain, s.prm.h);
       grid_.bin(built_.x);
-      build(s, built_.x, grid_, backend);
+      build(s, built_.x, HostNeighbors{nullptr, &grid_, s.prm.h * s.prm.h}, backend);
     } else {
       built_ = LoadBandState{};
     }
@@ -40,7 +40,7 @@ void LoadBand::update(const BandScene& s, Backend& backend, bool reordered) {
     pos_[k] = s.groups[k].pos;
     angle_[k] = s.groups[k].angle;
   }
-  build(s, x, backend.band_grid(x), backend);
+  build(s, x, backend.band_neighbors(x), backend);
   if (keep) {
     built_.x = x;
     built_.pos = pos_;

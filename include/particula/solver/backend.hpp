@@ -84,9 +84,9 @@ class Backend {
   /// Positions of every particle on the host (the band of the momentum loads is built from them,
   /// and its motion tested, once a step): the CPU's own, a device's downloaded.
   virtual const std::vector<Vec2>& host_positions() = 0;
-  /// A host cell grid binned at `x`, this step's host_positions() (the band's Voronoi cells search
-  /// it): the CPU's grid of the step's neighbour list, or a device's binning of x on the host.
-  virtual const CellGrid& band_grid(const std::vector<Vec2>& x) = 0;
+  /// The neighbours at `x`, this step's host_positions() (the band's Voronoi cells read them): the
+  /// CPU's neighbour list of the step, or a device's binning of x on the host.
+  virtual HostNeighbors band_neighbors(const std::vector<Vec2>& x) = 0;
   /// Pressures of every particle (the open-boundary fits read the fluid's stage pressures).
   virtual void download_pressures(std::vector<real>& p) = 0;
   /// Position, velocity, pressure and density of the particles `index` from P (the buffer

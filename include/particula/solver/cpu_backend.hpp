@@ -44,8 +44,10 @@ class CpuBackend final : public Backend {
 
   void group_loads(const std::vector<RigidGroup>& groups, real mu, std::vector<GroupLoads>& out) override;
   const std::vector<Vec2>& host_positions() override { return P_.x; }
-  /// The grid of the step's neighbour list, binned at the particles' positions (`x`).
-  const CellGrid& band_grid(const std::vector<Vec2>&) override { return grid_; }
+  /// The step's neighbour list, built at the particles' positions (`x`).
+  HostNeighbors band_neighbors(const std::vector<Vec2>&) override {
+    return HostNeighbors{&nl_, &grid_, kernel_.h * kernel_.h};
+  }
   void download_pressures(std::vector<real>&) override {}
   void set_buffer_particles(const std::vector<std::uint32_t>&, const Particles&) override {}
   void set_load_band(const std::vector<BandEntry>& band) override;

@@ -73,10 +73,10 @@ class LoadBand {
 
  private:
   /// The entries at positions x for the solids at the poses pos_, angle_, the Voronoi cells from
-  /// `grid` (binned at x); handed to `backend`.
-  void build(const BandScene& s, const std::vector<Vec2>& x, const CellGrid& grid, Backend& backend);
+  /// the neighbours `nbrs` at x; handed to `backend`.
+  void build(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs, Backend& backend);
   /// One thread's entries for fluid particles [f0, f1) of the fluid block, in particle order.
-  void build_entries(const BandScene& s, const std::vector<Vec2>& x, const CellGrid& grid, std::size_t f0,
+  void build_entries(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs, std::size_t f0,
                      std::size_t f1, std::vector<BandEntry>& part);
   /// Whether, since the kept band was built (positions x now), a solid surface has moved more
   /// than numerics.load_band_motion, two solids near each other have closed in by more than
@@ -103,10 +103,10 @@ class LoadBand {
   int near_solids(const BandScene& s, Vec2 x, real reach, NearSolid* out, int max) const;
   /// Solid k's distance and its gradient at x into `out` when x is within `reach` of it.
   bool offer_near_solid(const BandScene& s, Vec2 x, real reach, std::size_t k, NearSolid& out) const;
-  /// The area that weighs fluid particle i's grad(phi) terms (positions x, binned in `grid`): its
+  /// The area that weighs fluid particle i's grad(phi) terms (positions x, neighbours `nbrs`): its
   /// Voronoi cell among the particles within h, or 0 (its volume m / rho) when a surface particle
   /// is within h or the cell is not closed.
-  real cell_area(const BandScene& s, std::size_t i, const std::vector<Vec2>& x, const CellGrid& grid) const;
+  real cell_area(const BandScene& s, std::size_t i, const std::vector<Vec2>& x, const HostNeighbors& nbrs) const;
   /// The walls at the band's poses and the bodies' cos / sin of their angles, once a build.
   void place_solids(const BandScene& s);
   /// The bodies binned into cells of (largest bounding radius + reach), once a build.
