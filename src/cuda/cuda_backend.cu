@@ -35,6 +35,7 @@ CudaBackend::CudaBackend(const PhysicsParams& prm, const GridGeometry& grid, con
   real margin = 0;  // the buffers behind open boundaries lie outside the domain
   for (const OpenZone& z : prm.open) margin = std::max(margin, z.depth);
   host_grid_.setup(grid.domain, prm.h, margin);
+  band_grid_.setup(grid.domain, prm.h);
   zones_.upload(prm.open);  // the open lines, for the shifting limit next to them
   // Surface particles are addressed through their group index: check the layout once.
   for (std::size_t i = 0; i < P.n_boundary; ++i)
@@ -126,6 +127,11 @@ void CudaBackend::refresh_geometry(SolverCounters& cnt, PhaseTimes& times) {
 const CellGrid& CudaBackend::host_grid(const Particles& P) {
   host_grid_.bin(P.x);
   return host_grid_;
+}
+
+HostNeighbors CudaBackend::band_neighbors(const std::vector<Vec2>& x) {
+  band_grid_.bin(x);
+  return HostNeighbors{nullptr, &band_grid_, kernel_.h * kernel_.h};
 }
 
 void CudaBackend::device_geometry(SolverCounters& cnt) {

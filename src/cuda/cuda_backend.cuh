@@ -60,13 +60,17 @@ class CudaBackend final : public Backend {
   // state and transfers (cuda_backend.cu)
   void upload(const Particles& P) override;
   void download(Particles& P) override;
-  void download_positions(std::vector<Vec2>& x) override { x_.download(x); }
+  const std::vector<Vec2>& host_positions() override {
+    x_.download(host_x_);
+    return host_x_;
+  }
   void download_pressures(std::vector<real>& p) override { p_.download(p); }
   void reorder_fluid() override;
   void refresh_geometry(SolverCounters& cnt, PhaseTimes& times) override;
   /// The neighbour list, volumes and geometry sweep on the device (refresh_geometry's work).
   void device_geometry(SolverCounters& cnt);
   const CellGrid& host_grid(const Particles& P) override;
+  HostNeighbors band_neighbors(const std::vector<Vec2>& x) override;
   /// Nothing to do: the device's list build already leaves the pairs of two buffer particles out
   /// of min_distance (device_geometry).
   void skip_buffer_pairs_in_min_distance() override {}
@@ -113,6 +117,8 @@ class CudaBackend final : public Backend {
  private:
   GridGeometry grid_;
   CellGrid host_grid_;  // the host's binning of the downloaded positions (open boundaries' fits)
+  std::vector<Vec2> host_x_;  // the downloaded positions (host_positions)
+  CellGrid band_grid_;        // the host's binning of host_x_ for the load band's Voronoi cells
   WendlandC2 kernel_;
   real d0_, film_gap_;
   bool kernel_normals_, fatehi_manzari_, zeroth_order_gradient_, single_layer_;

@@ -103,7 +103,7 @@ void CpuBackend::geometry_sweep(SolverCounters& cnt) {
     bad_B += g.B_ok ? 0 : 1;
     bad_Bhat += g.Bhat_ok ? 0 : 1;
     sparse += g.sparse ? 1 : 0;
-    // P.18 normal; on failure the analytic normal set by place_boundary stays.
+    // P.18 normal; on failure the analytic normal set by the surfaces' placement stays.
     if (i < nb && kernel_normals && P_.kind[i] == Kind::Boundary && !kernel_normal(g.normal_sum, P_.normal[i]))
       ++bad_normal;
   }
@@ -414,15 +414,51 @@ void CpuBackend::group_loads(const std::vector<RigidGroup>& groups, real mu, std
 
 void CpuBackend::set_load_band(const std::vector<BandEntry>& band) { band_ = band; }
 
+LoadArrays CpuBackend::band_arrays(const LoadArrays& scalars) const {
+  LoadArrays a = scalars;
+  a.x = P_.x.data();
+  a.m = P_.m.data();
+  a.rho = P_.rho.data();
+  a.p = P_.p.data();
+  a.grad_v = gradV_.data();
+  a.lap_v = lapV_.data();
+  a.odd_even = odd_even();  // the damping's accelerations of the stage, or none
+  a.grad_p_over_rho = G_.data();
+  return a;
+}
+
+namespace {
+
+/// Calls share(e, sample) for every entry e of `band` with the sample of its particle, read once
+/// for the consecutive entries of one particle; blocks of kBandBlock entries in parallel.
+template <class Share>
+void each_band_sample(const LoadArrays& a, const std::vector<BandEntry>& band, Share share) {
+  const std::size_t ne = band.size(), nblocks = (ne + kBandBlock - 1) / kBandBlock;
+#pragma omp parallel for schedule(static)
+  for (std::size_t b = 0; b < nblocks; ++b) {
+    std::uint32_t sampled = std::numeric_limits<std::uint32_t>::max();
+    BandSample s;
+    for (std::size_t e = b * kBandBlock; e < std::min(ne, (b + 1) * kBandBlock); ++e) {
+      if (band[e].particle != sampled) s = band_sample(a, sampled = band[e].particle, band[e].area);
+      share(e, s);
+    }
+  }
+}
+
+}  // namespace
+
 void CpuBackend::band_levels(const LoadArrays& scalars, std::vector<Vec2>& num_den) {
+  const LoadArrays a = band_arrays(scalars);
   num_den.resize(band_.size());
-  for (std::size_t e = 0; e < band_.size(); ++e) band_entry_level(scalars, band_[e], num_den[e].x, num_den[e].y);
+  each_band_sample(a, band_, [&](std::size_t e, const BandSample& s) {
+    band_share_level(s, band_[e].phi, num_den[e].x, num_den[e].y);
+  });
 }
 
 void CpuBackend::band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
                             const std::vector<real>& group_level, std::vector<Vec2>& fp, std::vector<Vec2>& fv,
                             std::vector<Vec2>& torque, std::vector<Vec2>& fd) {
-  LoadArrays a = scalars;
+  LoadArrays a = band_arrays(scalars);
   a.group_pos = group_pos.data();
   a.group_level = group_level.data();
   const std::size_t ne = band_.size();
@@ -430,7 +466,10 @@ void CpuBackend::band_loads(const LoadArrays& scalars, const std::vector<Vec2>& 
   fv.resize(ne);
   torque.resize(ne);
   fd.resize(ne);
-  for (std::size_t e = 0; e < ne; ++e) band_entry_load(a, band_[e], fp[e], fv[e], torque[e], fd[e]);
+  each_band_sample(a, band_, [&](std::size_t e, const BandSample& s) {
+    band_entry_share(a, s, band_[e], fp[e], fv[e], torque[e]);
+    fd[e] = band_share_damping(s, band_[e].phi);
+  });
 }
 
 }  // namespace particula

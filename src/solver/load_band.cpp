@@ -112,7 +112,8 @@ int LoadBand::near_solids(const BandScene& s, Vec2 x, real reach, NearSolid* out
   return count;
 }
 
-real LoadBand::cell_area(const BandScene& s, std::size_t i, const std::vector<Vec2>& x, const NeighborList& nl) const {
+real LoadBand::cell_area(const BandScene& s, std::size_t i, const std::vector<Vec2>& x,
+                         const HostNeighbors& nbrs) const {
   const std::size_t nb = s.particles.n_boundary;
   Vec2 d[kVoronoiMaxVertices - 4];
   int count = 0;
@@ -124,18 +125,11 @@ real LoadBand::cell_area(const BandScene& s, std::size_t i, const std::vector<Ve
     }
     d[count++] = s.domain.separation(x[j], x[i]);
   };
-  if (s.dev) {
-    visit_neighbors(grid_.geometry(), s.prm.h * s.prm.h, x.data(), grid_.sorted().data(), grid_.cell_start().data(),
-                    grid_.cell_of()[i], static_cast<std::uint32_t>(i), [&](std::uint32_t j, real) { take(j); });
-  } else {
-    // The neighbour list built at these positions from the same cells: the same neighbours
-    // within h in the same order (visit_neighbors), without a second search.
-    for (std::uint32_t q = nl.start[i]; q < nl.start[i + 1]; ++q) take(nl.j[q]);
-  }
+  nbrs.visit(x.data(), static_cast<std::uint32_t>(i), take);
   return closed_by_fluid ? voronoi_cell_area(d, count, s.prm.h) : 0;
 }
 
-void LoadBand::build_entries(const BandScene& s, const std::vector<Vec2>& x, const NeighborList& nl, std::size_t f0,
+void LoadBand::build_entries(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs, std::size_t f0,
                              std::size_t f1, std::vector<BandEntry>& part) {
   constexpr int kMaxNear = 16;
   const real reach = kLoadBandReach * s.prm.h;
@@ -148,7 +142,7 @@ void LoadBand::build_entries(const BandScene& s, const std::vector<Vec2>& x, con
   for (std::size_t f = f0; f < f1; ++f) {
     const int count = in_load_band(s, nb + f) ? near_solids(s, x[nb + f], reach, near, kMaxNear) : 0;
     if (count == 0) continue;
-    const real area = cell_area(s, nb + f, x, nl);
+    const real area = cell_area(s, nb + f, x, nbrs);
     weigh_near_solids(near, count, reach);
     real S;
     Vec2 gradS;
@@ -178,16 +172,11 @@ void LoadBand::build_entries(const BandScene& s, const std::vector<Vec2>& x, con
   }
 }
 
-void LoadBand::build(const BandScene& s, const std::vector<Vec2>& x, const NeighborList& nl) {
+void LoadBand::build(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs, Backend& backend) {
   ++builds_;
   const std::size_t nb = s.particles.n_boundary, nf = x.size() - nb;
   bin_bodies(s, kLoadBandReach * s.prm.h);
   place_solids(s);
-  if (s.dev) {
-    // the device's neighbour list stays on the device: bin the downloaded positions here
-    grid_.setup(s.domain, s.prm.h);  // a few numbers: cheaper than checking
-    grid_.bin(x);
-  }
   const real kept_limit = s.prm.open.empty() ? s.prm.load_band_motion : 0;
   if (kept_limit > 0) {
     limit2_.assign(x.size(), kept_limit * kept_limit);
@@ -204,7 +193,7 @@ void LoadBand::build(const BandScene& s, const std::vector<Vec2>& x, const Neigh
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()),
                       nt = static_cast<std::size_t>(omp_get_num_threads());
     std::vector<BandEntry>& part = parts_[t];
-    build_entries(s, x, nl, nf * t / nt, nf * (t + 1) / nt, part);
+    build_entries(s, x, nbrs, nf * t / nt, nf * (t + 1) / nt, part);
     part_first_[t + 1] = part.size();
 #pragma omp barrier
 #pragma omp single
@@ -215,7 +204,7 @@ void LoadBand::build(const BandScene& s, const std::vector<Vec2>& x, const Neigh
     std::copy(part.begin(), part.end(), band_.begin() + static_cast<std::ptrdiff_t>(part_first_[t]));
   }
   assign_slots(s.groups.size());
-  if (s.dev) s.dev->set_load_band(band_);
+  backend.set_load_band(band_);
 }
 
 void LoadBand::assign_slots(std::size_t groups) {
@@ -260,21 +249,10 @@ void LoadBand::sum(std::size_t groups, std::vector<T>& partial, std::vector<T>& 
   for (std::size_t q = 0; q < partial.size(); ++q) total[static_cast<std::size_t>(slot_group_[q])] += partial[q];
 }
 
-LoadArrays LoadBand::load_arrays(const BandScene& s, const BandFields& f) const {
+LoadArrays LoadBand::load_arrays(const BandScene& s) const {
   const PhysicsParams& prm = s.prm;
-  const Particles& P = s.particles;
   LoadArrays a;
   a.domain = s.domain;
-  a.x = P.x.data();
-  a.m = P.m.data();
-  a.rho = P.rho.data();
-  a.p = P.p.data();
-  a.grad_v = f.grad_v;
-  a.lap_v = f.lap_v;
-  // the damping's accelerations of the stage (on a device, the device's own array:
-  // CudaBackend::device_load_arrays)
-  a.odd_even = f.odd_even;
-  a.grad_p_over_rho = f.grad_p_over_rho;
   a.group_pos = group_pos_.data();
   a.group_level = group_level_.data();
   a.mu = prm.nu * prm.rho0;
@@ -293,14 +271,14 @@ LoadArrays LoadBand::load_arrays(const BandScene& s, const BandFields& f) const 
   return a;
 }
 
-void LoadBand::group_loads(const BandScene& s, const BandFields& f, std::vector<RigidGroup>& groups) {
+void LoadBand::group_loads(const BandScene& s, Backend& backend, std::vector<RigidGroup>& groups) {
   const std::size_t ng = s.groups.size();
   group_pos_.resize(ng);
   for (std::size_t k = 0; k < ng; ++k) group_pos_[k] = s.groups[k].pos;
   group_level_.assign(ng, s.prm.rho0 * s.prm.c * s.prm.c);  // P_h = p0 for a group without fluid near it
-  const LoadArrays a = load_arrays(s, f);
-  sum_levels(s, a);
-  sum_loads(s, a);
+  const LoadArrays a = load_arrays(s);
+  sum_levels(s, a, backend);
+  sum_loads(s, a, backend);
 #pragma omp parallel for schedule(dynamic)
   for (std::size_t k = 0; k < ng; ++k) {
     RigidGroup& g = groups[k];
@@ -314,75 +292,40 @@ void LoadBand::group_loads(const BandScene& s, const BandFields& f, std::vector<
   }
 }
 
-void LoadBand::sum_levels(const BandScene& s, const LoadArrays& a) {
+void LoadBand::sum_levels(const BandScene& s, const LoadArrays& a, Backend& backend) {
   // Each group's level K_B, the smooth field that best matches the fluid in its band (the
   // pressure's constant is set by the fluid's mass in a closed box: a P_h off by a constant C
-  // adds C times the band's quadrature error of int grad(phi) = 0). On the CPU each particle's
-  // sample is read once for all its entries (consecutive in the band) and each entry evaluated
-  // inside its block's sum; the device evaluates every entry and the host sums its results in
-  // the same blocks.
-  if (s.dev) {
-    entry_fp_.resize(band_.size());
-    s.dev->band_levels(a, entry_fp_);  // (num, den) per entry
-  }
+  // adds C times the band's quadrature error of int grad(phi) = 0). The backend evaluates every
+  // entry, and the entries are summed here in blocks.
+  backend.band_levels(a, entry_fp_);  // (num, den) per entry
   sum(s.groups.size(), level_partial_, level_total_, [&](std::size_t e0, std::size_t e1, Vec2* sums) {
-    std::uint32_t sampled = std::numeric_limits<std::uint32_t>::max();
-    BandSample bs;
-    for (std::size_t e = e0; e < e1; ++e) {
-      const BandEntry& be = band_[e];
-      Vec2 nd;
-      if (s.dev) {
-        nd = entry_fp_[e];
-      } else {
-        if (be.particle != sampled) bs = band_sample(a, sampled = be.particle, be.area);
-        band_share_level(bs, be.phi, nd.x, nd.y);
-      }
-      sums[be.slot] += nd;
-    }
+    for (std::size_t e = e0; e < e1; ++e) sums[band_[e].slot] += entry_fp_[e];
   });
   for (std::size_t k = 0; k < s.groups.size(); ++k)
     if (level_total_[k].y > 0) group_level_[k] = level_total_[k].x / level_total_[k].y;
 }
 
-void LoadBand::sum_loads(const BandScene& s, const LoadArrays& a) {
+void LoadBand::sum_loads(const BandScene& s, const LoadArrays& a, Backend& backend) {
   // A circle takes no torque from pressure about its centre (P r x n = 0 on its surface), and the
   // band's pressure torque, exact in the continuum and resolved elsewhere, is not in a film
   // between the circle and another surface thinner than about two spacings: P grad(phi) there is
   // normal to the film, not to the circle, and nothing in the unresolved film cancels its moment
   // (docs/method.md, "Forces on solids"). So a circle takes only the viscous part of the torque
   // of its entries in such a film.
-  const std::size_t ng = s.groups.size(), ne = band_.size();
+  const std::size_t ng = s.groups.size();
   group_circle_.resize(ng);
   for (std::size_t k = 0; k < ng; ++k)
     group_circle_[k] = !s.groups[k].is_wall &&
                        s.prm.bodies[static_cast<std::size_t>(s.groups[k].body)].shape.kind() == ShapeKind::Circle;
-  if (s.dev) {
-    entry_fp_.resize(ne);
-    entry_fv_.resize(ne);
-    entry_torque_.resize(ne);
-    entry_fd_.resize(ne);
-    s.dev->band_loads(a, group_pos_, group_level_, entry_fp_, entry_fv_, entry_torque_, entry_fd_);
-  }
+  backend.band_loads(a, group_pos_, group_level_, entry_fp_, entry_fv_, entry_torque_, entry_fd_);
   sum(ng, load_partial_, load_total_, [&](std::size_t e0, std::size_t e1, LoadSum* sums) {
-    std::uint32_t sampled = std::numeric_limits<std::uint32_t>::max();
-    BandSample bs;
     for (std::size_t e = e0; e < e1; ++e) {
       const BandEntry& be = band_[e];
-      Vec2 efp, efv, et, efd;
-      if (s.dev) {
-        efp = entry_fp_[e];
-        efv = entry_fv_[e];
-        et = entry_torque_[e];
-        efd = entry_fd_[e];
-      } else {
-        if (be.particle != sampled) bs = band_sample(a, sampled = be.particle, be.area);
-        band_entry_share(a, bs, be, efp, efv, et);
-        efd = band_share_damping(bs, be.phi);
-      }
+      const Vec2 et = entry_torque_[e];
       LoadSum& total = sums[be.slot];
-      total.fp += efp;
-      total.fv += efv;
-      total.fd += efd;
+      total.fp += entry_fp_[e];
+      total.fv += entry_fv_[e];
+      total.fd += entry_fd_[e];
       total.torque += group_circle_[static_cast<std::size_t>(be.group)] && be.in_film ? et.y : et.x + et.y;
     }
   });

@@ -10,26 +10,25 @@
 
 namespace particula {
 
-void LoadBand::update(const BandScene& s, const CellGrid& grid, const WendlandC2& kernel, const NeighborList& nl,
-                      bool reordered) {
+void LoadBand::update(const BandScene& s, Backend& backend, bool reordered) {
   // The band's phi_B, grad phi_B, areas and films change with the particles' and the solids'
   // positions only; kept (numerics.load_band_motion > 0), it stands for the positions it was
   // built at until something has moved farther than that. A reordering renumbers the
   // particles, an open boundary changes them every step: both rebuild it.
   const bool keep = s.prm.load_band_motion > 0 && s.prm.open.empty();
   const std::size_t ng = s.groups.size();
-  if (s.dev) s.dev->download_positions(x_);
-  const std::vector<Vec2>& x = s.dev ? x_ : s.particles.x;
+  const std::vector<Vec2>& x = backend.host_positions();
   if (keep && restore_) {
-    // a checkpoint's band: built again where the uninterrupted run built it
+    // a checkpoint's band: built again where the uninterrupted run built it, from its positions
+    // binned here as the step's neighbour search bins them (a kept band has no open boundary, so
+    // the grid has no margin)
     restore_ = false;
     if (built_.x.size() == x.size() && built_.pos.size() == ng && built_.angle.size() == ng) {
       pos_ = built_.pos;
       angle_ = built_.angle;
-      CellGrid g = grid;
-      NeighborList built_nl;
-      if (!s.dev) build_neighbor_list(built_.x, s.domain, kernel, g, built_nl);
-      build(s, built_.x, built_nl);
+      grid_.setup(s.domain, s.prm.h);
+      grid_.bin(built_.x);
+      build(s, built_.x, HostNeighbors{nullptr, &grid_, s.prm.h * s.prm.h}, backend);
     } else {
       built_ = LoadBandState{};
     }
@@ -41,7 +40,7 @@ void LoadBand::update(const BandScene& s, const CellGrid& grid, const WendlandC2
     pos_[k] = s.groups[k].pos;
     angle_[k] = s.groups[k].angle;
   }
-  build(s, x, nl);
+  build(s, x, backend.band_neighbors(x), backend);
   if (keep) {
     built_.x = x;
     built_.pos = pos_;

@@ -26,7 +26,7 @@ Solver::Solver(PhysicsParams params, Domain domain, Particles particles, std::ve
     : prm_(params),
       domain_(domain),
       P_(std::move(particles)),
-      groups_(std::move(groups)),
+      bodies_(prm_, std::move(groups)),
       kernel_(params.h),
       t_(t0),
       steps_(step0),
@@ -34,7 +34,7 @@ Solver::Solver(PhysicsParams params, Domain domain, Particles particles, std::ve
       backend_(cpu_.get()),
       open_(prm_.open.size()) {
   if (start == SolverStart::Fresh) {
-    place_boundary();
+    bodies_.place(*backend_);
     refresh_geometry();
     open_ghost_weights();
     open_velocities(t_);
@@ -87,6 +87,13 @@ void Solver::boundary_pressure() {
   PhaseTimer timer(times_.wall_pressure);
   if (P_.n_boundary == 0) return;
   backend_->boundary_pressure(prm_.wall_pressure_sweeps, stage_params(dt_), counters_);
+}
+
+void Solver::group_loads() {
+  if (prm_.momentum_force)
+    band_.group_loads(band_scene(), *backend_, bodies_.groups());
+  else
+    bodies_.surface_loads(*backend_);
 }
 
 StageParams Solver::stage_params(real dt) const {
@@ -177,7 +184,7 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   prepare_step();
   {
     PhaseTimer timer(times_.bodies);
-    if (auto f = contacts_.find(prm_, domain_, groups_)) return f;
+    if (auto f = contacts_.find(prm_, domain_, bodies_.groups())) return f;
   }
   {
     PhaseTimer timer(times_.integration);
@@ -191,7 +198,7 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   const real t_new = dt_cap > 0 && dt == dt_cap && std::isfinite(land_at) ? land_at : t_ + dt;
   {
     PhaseTimer timer(times_.bodies);
-    contacts_.apply(prm_, domain_, groups_, dt);
+    contacts_.apply(prm_, domain_, bodies_.groups(), dt);
   }
   const StageParams sp = stage_params(dt);
   open_velocities(t_ + 0.5 * dt);
@@ -218,23 +225,13 @@ void Solver::prepare_step() {
   if (!prm_.open.empty()) backend_->skip_buffer_pairs_in_min_distance();
   if (prm_.momentum_force) {
     PhaseTimer timer(times_.bodies);
-    band_.update(band_scene(), cpu_->grid(), kernel_, cpu_->neighbors(), reordered);
+    band_.update(band_scene(), *backend_, reordered);
   }
 }
 
 void Solver::stage(StageStart from, const StageParams& sp, real t_new) {
   backend_->save_stage_start(from);
-  group_v0_.resize(groups_.size());
-  group_w0_.resize(groups_.size());
-  for (std::size_t k = 0; k < groups_.size(); ++k) {
-    RigidGroup& g = groups_[k];
-    group_v0_[k] = g.vel;
-    group_w0_[k] = g.omega;
-    if (from == StageStart::StepStart) {
-      g.vel_n = g.vel;
-      g.omega_n = g.omega;
-    }
-  }
+  bodies_.start_stage(from);
   {
     PhaseTimer timer(times_.operators);
     if (from == StageStart::StepStart)
@@ -248,8 +245,7 @@ void Solver::stage(StageStart from, const StageParams& sp, real t_new) {
     // carry the stage's velocity and acceleration (positions stay frozen during the stages).
     PhaseTimer timer(times_.bodies);
     group_loads();
-    body_stage(sp.dt, t_new, group_v0_, group_w0_);
-    set_boundary_kinematics();
+    bodies_.stage(*backend_, sp.dt, t_new);
   }
   {
     PhaseTimer timer(times_.operators);
@@ -272,8 +268,7 @@ void Solver::update(real dt, real t_new) {
   ++steps_;
   {
     PhaseTimer timer(times_.bodies);
-    body_update(dt, t_);
-    place_boundary();
+    bodies_.update(*backend_, dt, t_);
   }
   // particle shifting (P.33-P.36), with the step's geometry and the new fields
   if (prm_.shifting_beta > 0) {
@@ -290,43 +285,12 @@ std::optional<Failure> Solver::finish_step() {
   return check_health();
 }
 
-namespace {
-/// The first rigid group with a non-finite motion or load (what bodies.csv and walls.csv
-/// hold), as a Failure; nullopt when all are finite.
-std::optional<Failure> unhealthy_group(const std::vector<RigidGroup>& groups) {
-  for (const RigidGroup& g : groups) {
-    const real values[] = {g.pos.x,
-                           g.pos.y,
-                           g.vel.x,
-                           g.vel.y,
-                           g.angle,
-                           g.omega,
-                           g.torque,
-                           g.force_pressure.x,
-                           g.force_pressure.y,
-                           g.force_viscous.x,
-                           g.force_viscous.y,
-                           g.force_collision.x,
-                           g.force_collision.y,
-                           g.force_damping.x,
-                           g.force_damping.y};
-    if (std::all_of(std::begin(values), std::end(values), [](real v) { return std::isfinite(v); })) continue;
-    Failure f;
-    f.position = std::isfinite(g.pos.x) && std::isfinite(g.pos.y) ? g.pos : Vec2{};
-    f.what = std::string("non-finite value (NaN or Inf) in the motion or force of ") +
-             (g.is_wall ? "wall '" : "body '") + g.name + "'";
-    return f;
-  }
-  return std::nullopt;
-}
-}  // namespace
-
 std::optional<Failure> Solver::check_health() const {
-  if (auto f = body_at_open_boundary()) return f;
+  if (auto f = bodies_.at_open_boundary()) return f;
   const HealthLimits lim = health_limits();
   const real lo = lim.rho_lo, hi = lim.rho_hi;
   const std::int64_t worst = backend_->unhealthy_id(lim);
-  if (worst < 0) return unhealthy_group(groups_);
+  if (worst < 0) return bodies_.unhealthy();
   sync_host();  // the host copy names the particle
   std::size_t i = 0;
   while (P_.id[i] != worst) ++i;
@@ -379,7 +343,7 @@ std::string Solver::likely_cause(Vec2 x) const {
   if (s == P_.n_boundary) return "";
   const real d = dot(domain_.separation(x, P_.x[s]), P_.normal[s]) / prm_.d0;
   if (!std::isfinite(d) || std::fabs(d) > 1e6) return "";  // a position already broken: no cause to name
-  const RigidGroup& g = groups_[static_cast<std::size_t>(P_.group[s])];
+  const RigidGroup& g = bodies_.groups()[static_cast<std::size_t>(P_.group[s])];
   const std::string where = (g.is_wall ? "wall '" : "body '") + g.name + "'";
   char buf[640];
   if (d < 0.5)

@@ -38,7 +38,7 @@ void Solver::open_end_of_step() {
   // which goes back to a device afterwards (one download and one upload a step).
   sync_host();
   open_.transfer(open_scene(), P_);
-  open_.remove_bodies_at_outlets(open_scene(), P_, groups_, t_);
+  open_.remove_bodies_at_outlets(open_scene(), P_, bodies_.groups(), t_);
   backend_->upload(P_);
   host_current_ = true;
   device_current_ = true;

@@ -125,7 +125,7 @@ TEST(MomentumLoads, PartitionIsOneOnItsSolidZeroOnTheOthersAndHasTheRightGradien
 }
 
 TEST(MomentumLoads, BandLoadSplitsItsTorqueIntoThePressureAndViscousParts) {
-  // A circle takes only the viscous part (Solver::momentum_group_loads), so the two parts must
+  // A circle takes only the viscous part (LoadBand::group_loads), so the two parts must
   // be the moments of fp and fv about the solid's reference point, each on its own.
   BandSample s;
   s.m = 4e-5;

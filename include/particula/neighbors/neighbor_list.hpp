@@ -146,6 +146,27 @@ struct NeighborList {
   std::size_t pair_count() const { return j.size(); }
 };
 
+/// The neighbours of every particle at one set of host positions x, as the host reads them: the
+/// rows of a neighbour list built at x, or, without one, a cell grid binned at x visited with
+/// visit_neighbors. Both give the same neighbours in the same order (the list is built in that
+/// visit's order).
+struct HostNeighbors {
+  const NeighborList* list = nullptr;
+  const CellGrid* grid = nullptr;
+  real h2 = 0;  // the support radius squared (for the grid's visit)
+
+  /// Calls emit(j) for every neighbour j of particle i.
+  template <class Emit>
+  void visit(const Vec2* x, std::uint32_t i, Emit&& emit) const {
+    if (list != nullptr) {
+      for (std::uint32_t q = list->start[i]; q < list->start[i + 1]; ++q) emit(list->j[q]);
+      return;
+    }
+    visit_neighbors(grid->geometry(), h2, x, grid->sorted().data(), grid->cell_start().data(), grid->cell_of()[i], i,
+                    [&](std::uint32_t j, real) { emit(j); });
+  }
+};
+
 /// Builds the pair list of all particles (every pair stored from both sides, i != j,
 /// r_ij < h), neighbours of each i in a fixed, thread-count independent order.
 void build_neighbor_list(const std::vector<Vec2>& x, const Domain& domain, const WendlandC2& kernel,

@@ -47,7 +47,7 @@ class Backend {
   /// "cpu" or "cuda".
   virtual const char* name() const = 0;
   /// Whether the particle state the passes work on is the host's own (the CPU): then the
-  /// transfers do nothing and the host evaluates the band's entries as it sums them.
+  /// transfers do nothing.
   virtual bool on_host() const = 0;
 
   /// Whole-state transfers (start, after the host changed the state, output, checkpoints).
@@ -81,16 +81,20 @@ class Backend {
   /// Loads of every group from the surface sum P.26-P.27 (pressure and viscous parts, torque
   /// about its position).
   virtual void group_loads(const std::vector<RigidGroup>& groups, real mu, std::vector<GroupLoads>& out) = 0;
-  /// Positions of every particle (the band of the momentum loads is built from them once a step).
-  virtual void download_positions(std::vector<Vec2>& x) = 0;
+  /// Positions of every particle on the host (the band of the momentum loads is built from them,
+  /// and its motion tested, once a step): the CPU's own, a device's downloaded.
+  virtual const std::vector<Vec2>& host_positions() = 0;
+  /// The neighbours at `x`, this step's host_positions() (the band's Voronoi cells read them): the
+  /// CPU's neighbour list of the step, or a device's binning of x on the host.
+  virtual HostNeighbors band_neighbors(const std::vector<Vec2>& x) = 0;
   /// Pressures of every particle (the open-boundary fits read the fluid's stage pressures).
   virtual void download_pressures(std::vector<real>& p) = 0;
   /// Position, velocity, pressure and density of the particles `index` from P (the buffer
   /// particles, whose fields the open-boundary passes set on the host).
   virtual void set_buffer_particles(const std::vector<std::uint32_t>& index, const Particles& P) = 0;
-  /// The band entries of this step (numerics.force = momentum).
+  /// The band entries of this step (numerics.force = momentum), in the load band's order.
   virtual void set_load_band(const std::vector<BandEntry>& band) = 0;
-  /// band_entry_level of every entry (num, den in x, y) with the device's fields of the current
+  /// band_entry_level of every entry (num, den in x, y) with the backend's fields of the current
   /// stage; `scalars` gives the constants (its pointers are ignored).
   virtual void band_levels(const LoadArrays& scalars, std::vector<Vec2>& num_den) = 0;
   /// band_entry_load of every entry, with each group's X_B and smooth-pressure level (torque:

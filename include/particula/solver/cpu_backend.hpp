@@ -43,7 +43,11 @@ class CpuBackend final : public Backend {
   void boundary_pressure(int sweeps, const StageParams& s, SolverCounters& cnt) override;
 
   void group_loads(const std::vector<RigidGroup>& groups, real mu, std::vector<GroupLoads>& out) override;
-  void download_positions(std::vector<Vec2>& x) override { x = P_.x; }
+  const std::vector<Vec2>& host_positions() override { return P_.x; }
+  /// The step's neighbour list, built at the particles' positions (`x`).
+  HostNeighbors band_neighbors(const std::vector<Vec2>&) override {
+    return HostNeighbors{&nl_, &grid_, kernel_.h * kernel_.h};
+  }
   void download_pressures(std::vector<real>&) override {}
   void set_buffer_particles(const std::vector<std::uint32_t>&, const Particles&) override {}
   void set_load_band(const std::vector<BandEntry>& band) override;
@@ -58,7 +62,7 @@ class CpuBackend final : public Backend {
   void guard_surfaces(real keep, SolverCounters& cnt) override;
   std::int64_t unhealthy_id(const HealthLimits& limits) override;
 
-  // The host's view of the step (tests, benchmarks, the load band's sums and Voronoi cells).
+  // The host's view of the step (tests, benchmarks).
   const CellGrid& grid() const { return grid_; }
   const NeighborList& neighbors() const { return nl_; }
   const std::vector<Mat2>& B() const { return B_; }
@@ -92,6 +96,8 @@ class CpuBackend final : public Backend {
   bool in_open_buffer(Vec2 x) const;
   /// Takes the normal part out of the shifting direction of fluid particles within h of an open line.
   void limit_shifting_at_open_lines();
+  /// The constants of `scalars` with the host's particles and fields of the current stage.
+  LoadArrays band_arrays(const LoadArrays& scalars) const;
 
   const PhysicsParams& prm_;
   const Domain& domain_;
@@ -110,8 +116,7 @@ class CpuBackend final : public Backend {
   // per-pair weights of the geometry sweep (solver/sweeps.hpp)
   std::vector<Vec2> pair_grad_w_;
   std::vector<real> pair_lap_w_;
-  // the band entries handed over for band_levels and band_loads (the solver's load band sums the
-  // host's entries as it evaluates them, and hands over none)
+  // the band entries of the step (set_load_band), evaluated by band_levels and band_loads
   std::vector<BandEntry> band_;
   // reordering scratch
   std::vector<std::uint32_t> reorder_key_;

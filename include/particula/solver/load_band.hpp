@@ -4,7 +4,8 @@
 // each fluid particle near a solid, with its Voronoi cell) depends on positions only: it is built
 // from the solids' signed distances, in particle order whatever the thread count, and with
 // numerics.load_band_motion kept across steps until a solid or a particle has moved that far.
-// Its loads are summed per stage in one fixed order.
+// The backend evaluates its entries each stage (Backend::band_levels, band_loads); their loads
+// are summed per group in one fixed order.
 #pragma once
 
 #include <cstddef>
@@ -21,7 +22,6 @@
 #include "particula/solver/physics_params.hpp"
 #include "particula/solver/rigid_group.hpp"
 #include "particula/solver/solids.hpp"
-#include "particula/sph/kernel.hpp"
 
 namespace particula {
 
@@ -42,29 +42,19 @@ struct LoadBandState {
 struct BandScene {
   const PhysicsParams& prm;
   const Domain& domain;
-  const Particles& particles;  // the host copy: block sizes, kinds, surface samples (x on the CPU)
+  const Particles& particles;  // the host copy: block sizes, kinds, surface samples
   const std::vector<RigidGroup>& groups;
-  Backend* dev;  // the device that evaluates the entries, or null (the host evaluates them as it sums)
-};
-
-/// The stage's fields the loads read (host arrays; the device reads its own).
-struct BandFields {
-  const Mat2* grad_v = nullptr;
-  const Vec2* lap_v = nullptr;
-  const Vec2* odd_even = nullptr;  // the damping's accelerations of the stage, or null
-  const Vec2* grad_p_over_rho = nullptr;
 };
 
 class LoadBand {
  public:
   /// The band of this step: built, or kept (numerics.load_band_motion) while nothing has moved
-  /// too far; a reordering renumbers the particles and rebuilds it. `nl` is the step's neighbour
-  /// list (CPU backend), `grid` and `kernel` rebuild a restored band's list.
-  void update(const BandScene& s, const CellGrid& grid, const WendlandC2& kernel, const NeighborList& nl,
-              bool reordered);
-  /// The band momentum balance of every group for the current stage: each group's pressure,
-  /// viscous and damping loads and torque.
-  void group_loads(const BandScene& s, const BandFields& f, std::vector<RigidGroup>& groups);
+  /// too far; a reordering renumbers the particles and rebuilds it. The positions and their grid
+  /// come from `backend`, which gets the entries of each build.
+  void update(const BandScene& s, Backend& backend, bool reordered);
+  /// The band momentum balance of every group for the current stage, its entries evaluated by
+  /// `backend`: each group's pressure, viscous and damping loads and torque.
+  void group_loads(const BandScene& s, Backend& backend, std::vector<RigidGroup>& groups);
 
   /// Where the kept band was built (checkpoints carry it); empty while none is kept.
   const LoadBandState& state() const { return built_; }
@@ -82,11 +72,11 @@ class LoadBand {
   const std::vector<std::int32_t>& anchors() const { return anchor_; }
 
  private:
-  /// The entries at positions x for the solids at the poses pos_, angle_; the CPU's Voronoi cells
-  /// from neighbour list nl, built at x (the GPU backend bins x itself).
-  void build(const BandScene& s, const std::vector<Vec2>& x, const NeighborList& nl);
+  /// The entries at positions x for the solids at the poses pos_, angle_, the Voronoi cells from
+  /// the neighbours `nbrs` at x; handed to `backend`.
+  void build(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs, Backend& backend);
   /// One thread's entries for fluid particles [f0, f1) of the fluid block, in particle order.
-  void build_entries(const BandScene& s, const std::vector<Vec2>& x, const NeighborList& nl, std::size_t f0,
+  void build_entries(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs, std::size_t f0,
                      std::size_t f1, std::vector<BandEntry>& part);
   /// Whether, since the kept band was built (positions x now), a solid surface has moved more
   /// than numerics.load_band_motion, two solids near each other have closed in by more than
@@ -113,20 +103,20 @@ class LoadBand {
   int near_solids(const BandScene& s, Vec2 x, real reach, NearSolid* out, int max) const;
   /// Solid k's distance and its gradient at x into `out` when x is within `reach` of it.
   bool offer_near_solid(const BandScene& s, Vec2 x, real reach, std::size_t k, NearSolid& out) const;
-  /// The area that weighs fluid particle i's grad(phi) terms (positions x): its Voronoi cell
-  /// among the particles within h, or 0 (its volume m / rho) when a surface particle is within h
-  /// or the cell is not closed.
-  real cell_area(const BandScene& s, std::size_t i, const std::vector<Vec2>& x, const NeighborList& nl) const;
+  /// The area that weighs fluid particle i's grad(phi) terms (positions x, neighbours `nbrs`): its
+  /// Voronoi cell among the particles within h, or 0 (its volume m / rho) when a surface particle
+  /// is within h or the cell is not closed.
+  real cell_area(const BandScene& s, std::size_t i, const std::vector<Vec2>& x, const HostNeighbors& nbrs) const;
   /// The walls at the band's poses and the bodies' cos / sin of their angles, once a build.
   void place_solids(const BandScene& s);
   /// The bodies binned into cells of (largest bounding radius + reach), once a build.
   void bin_bodies(const BandScene& s, real reach);
-  /// The stage's arrays as the per-entry functions read them.
-  LoadArrays load_arrays(const BandScene& s, const BandFields& f) const;
+  /// The stage's constants as the per-entry functions read them (the backend adds its arrays).
+  LoadArrays load_arrays(const BandScene& s) const;
   /// Pass 1 of the loads: each group's level K_B (group_level_).
-  void sum_levels(const BandScene& s, const LoadArrays& a);
+  void sum_levels(const BandScene& s, const LoadArrays& a, Backend& backend);
   /// Pass 2: the loads of the entries summed per group (load_total_).
-  void sum_loads(const BandScene& s, const LoadArrays& a);
+  void sum_loads(const BandScene& s, const LoadArrays& a, Backend& backend);
   /// The load of group k's smooth pressure P_h, added exactly: the segment integral for a wall,
   /// -rho_h g_h A for a body with fluid all round, else the surface sum.
   void smooth_pressure_load(const BandScene& s, const LoadArrays& a, std::size_t k, Vec2& force,
@@ -154,13 +144,13 @@ class LoadBand {
   std::vector<Vec2> level_partial_, level_total_;  // (num, den) of K_B per block slot / group
   std::vector<LoadSum> load_partial_, load_total_;
   std::vector<std::uint8_t> group_circle_;  // group k is a circular body
-  std::vector<Vec2> entry_fp_, entry_fv_, entry_fd_, x_, group_pos_;  // per entry from the device; positions
+  std::vector<Vec2> entry_fp_, entry_fv_, entry_fd_, group_pos_;  // per entry from the backend
   std::vector<Vec2> entry_torque_;  // per entry: torque of its pressure part (x) and viscous part (y)
   std::vector<real> group_level_;
   // the solids as the band was built
   BodyCells bodies_;  // the bodies binned once a build for near_solids
   std::vector<BodyCells::Item> body_items_;
-  CellGrid grid_;                 // GPU backend: every particle binned once a build for cell_area
+  CellGrid grid_;                 // a restored band's positions binned for cell_area
   std::vector<WallPiece> walls_;  // wall group k at the band's build (walls come first)
   std::vector<Vec2> turn_;        // body group k: cos and sin of its angle at the band's build
   std::vector<Vec2> pos_;         // group k's position the band is built at

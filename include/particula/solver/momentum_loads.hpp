@@ -279,7 +279,7 @@ PARTICULA_HD void band_share_level(const BandSample& s, real phi, real& num, rea
 /// or w_i = m_i / rho_i), split into the pressure part (P_dyn, <grad P>, grad P_h) and the
 /// viscous part (tau, <lap V>), and the torques about X_B (lever = x_i - X_B, minimum image) of
 /// each part: torque.x of the pressure part, torque.y of the viscous part (a circle takes only the
-/// latter in a film: Solver::momentum_group_loads). The phi terms keep the volume w_i: they are
+/// latter in a film: LoadBand::group_loads). The phi terms keep the volume w_i: they are
 /// the particle's own momentum rate, m_i (a_i - f) = w_i (-<grad P>_i + ...).
 PARTICULA_HD void band_share_load(const BandSample& s, real phi, Vec2 grad_phi, real level, Vec2 lever,
                                   const LoadArrays& a, Vec2& fp, Vec2& fv, Vec2& torque) {

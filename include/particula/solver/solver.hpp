@@ -27,6 +27,7 @@
 #include "particula/solver/momentum_loads.hpp"
 #include "particula/solver/particles.hpp"
 #include "particula/solver/physics_params.hpp"
+#include "particula/solver/rigid_bodies.hpp"
 #include "particula/solver/rigid_group.hpp"
 #include "particula/solver/sweeps.hpp"
 #include "particula/sph/kernel.hpp"
@@ -71,7 +72,7 @@ class Solver {
   Particles& particles();
   std::size_t particle_count() const { return P_.size(); }
   const char* backend_name() const { return backend_->name(); }
-  const std::vector<RigidGroup>& groups() const { return groups_; }
+  const std::vector<RigidGroup>& groups() const { return bodies_.groups(); }
   const Domain& domain() const { return domain_; }
   const PhysicsParams& params() const { return prm_; }
   const SolverCounters& counters() const { return counters_; }
@@ -131,21 +132,13 @@ class Solver {
   void update(real dt, real t_new);
   /// The surface guard, the open boundaries' transfer, and the health check.
   std::optional<Failure> finish_step();
-  void place_boundary();
-  void set_boundary_kinematics();
   /// P.20 on the surfaces (or the dummy copy), then isolated fluid particles' pressure.
   void boundary_pressure();
   /// Hydrodynamic loads of every group for the current stage: P.26-P.27 (`numerics.force =
   /// paper`) or the band momentum balance (load_band.hpp).
   void group_loads();
-  /// The band momentum balance of every group (numerics.force = momentum).
-  void momentum_group_loads();
   /// What the load band reads of this solver's state.
-  BandScene band_scene() const;
-  /// Advances the velocities of free and prescribed groups by one stage to time t_stage_end,
-  /// from the stage-start velocities v0/omega0 of each group.
-  void body_stage(real dt, real t_stage_end, const std::vector<Vec2>& v0, const std::vector<real>& omega0);
-  void body_update(real dt, real t_new);
+  BandScene band_scene() const { return BandScene{prm_, domain_, P_, bodies_.groups()}; }
   // ---- open boundaries (solver_open.cpp): the component's passes on the host state, and the
   // transfers of what they set
   OpenScene open_scene() const { return OpenScene{prm_, domain_, kernel_}; }
@@ -161,9 +154,6 @@ class Solver {
   /// host state, sent back to a device afterwards.
   void open_end_of_step();
   std::optional<Failure> check_health() const;
-  /// A body whose surface has come within h of an open boundary's line (its screen should have
-  /// held it back, or removed it): a failure naming both.
-  std::optional<Failure> body_at_open_boundary() const;
   /// What a failure at fluid position x most likely comes from, for the exit-3 message.
   std::string likely_cause(Vec2 x) const;
   /// The flow's Mach number (away from a failure at `failed_at`) and hydrostatic compression where
@@ -176,7 +166,6 @@ class Solver {
 
   StageParams stage_params(real dt) const;
   HealthLimits health_limits() const;
-  const std::vector<GroupMotion>& group_motions();
   /// The host copy of the particles made current (downloaded from a device when it changed).
   void sync_host() const;
   /// The device's copy made current (uploaded when the host changed the particles).
@@ -185,24 +174,20 @@ class Solver {
   PhysicsParams prm_;
   Domain domain_;
   mutable Particles P_;
-  std::vector<RigidGroup> groups_;
+  RigidBodies bodies_;  // the rigid groups (solver/rigid_bodies.hpp)
   WendlandC2 kernel_;
   SolverCounters counters_;
   real t_ = 0, dt_ = 0;
   std::int64_t steps_ = 0;
   PhaseTimes times_;
 
-  std::vector<Vec2> group_v0_;
-  std::vector<real> group_w0_;
   // the passes: on the host (cpu_) or on a device; backend_ is the one that runs the step
   std::unique_ptr<CpuBackend> cpu_;
   std::unique_ptr<Backend> device_;
   Backend* backend_ = nullptr;
   mutable bool host_current_ = true;  // P_ equals the backend's state
   bool device_current_ = true;        // the backend's state equals P_
-  std::vector<GroupLoads> loads_;
-  std::vector<GroupMotion> motions_;
-  LoadBand band_;      // the band of the momentum loads (solver/load_band.hpp)
+  LoadBand band_;          // the band of the momentum loads (solver/load_band.hpp)
   Contacts contacts_;      // the contacts of the step (solver/contacts.hpp)
   OpenBoundaries open_;    // inlets and outlets (solver/open_boundaries.hpp)
 };

@@ -1,0 +1,161 @@
+// The CPU backend's evaluation of the load band's entries (Backend::set_load_band, band_levels,
+// band_loads; numerics.force = "momentum"): every entry exactly as the PARTICULA_HD functions of
+// solver/momentum_loads.hpp give it from the host's particles and fields of the stage, with the
+// backend's own arrays (the constants' pointers are ignored), whatever the entries' order.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "particula/case/case.hpp"
+#include "particula/scene/scene.hpp"
+#include "particula/solver/momentum_loads.hpp"
+#include "particula/solver/solver.hpp"
+
+using namespace particula;
+
+namespace {
+
+/// A free cylinder settling in a closed box of fluid under gravity (the fluid moving, the
+/// odd-even damping on).
+Case settling_cylinder() {
+  Case c = default_case();
+  c.name = "settling";
+  const real L = 4e-3;
+  c.domain_min = {0, 0};
+  c.domain_max = {L, L};
+  c.d0 = 1.25e-4;
+  c.rho0 = 1000;
+  c.nu = 1e-4;
+  c.c = 1;
+  c.t_end = 1;
+  c.output_interval = 1;
+  c.gravity = {0, -9.81};
+  c.gravity_in_fluid = true;
+  c.force = ForceModel::Momentum;
+  c.odd_even_damping = 0.01;
+  const Vec2 corners[4] = {{0, 0}, {L, 0}, {L, L}, {0, L}};
+  for (int k = 0; k < 4; ++k) {
+    WallSpec w;
+    w.name = "wall" + std::to_string(k);
+    w.from = corners[k];
+    w.to = corners[(k + 1) % 4];
+    c.walls.push_back(w);
+  }
+  BodySpec b;
+  b.name = "cylinder";
+  b.shape = BodyShape::Circle;
+  b.center = {L / 2, L / 2};
+  b.radius = 0.8e-3;
+  b.density = 1500;
+  b.motion = BodyMotion::Free;
+  c.bodies = {b};
+  return c;
+}
+
+/// Up to three entries per fluid particle, of random groups and weights, with the particle's
+/// random area (0: its volume), each particle's entries consecutive, in two passes over the fluid (a particle's
+/// entries of the two passes apart, in different blocks).
+std::vector<BandEntry> random_band(const Particles& P, std::size_t groups) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<real> u(-1, 1);
+  std::vector<real> area(P.size());  // a particle's, as a band build gives all its entries
+  for (real& a : area) a = rng() % 3 == 0 ? 0 : 4e-8 * (1 + 0.2 * u(rng));
+  std::vector<BandEntry> band;
+  const auto add = [&](std::size_t i, int count) {
+    for (int k = 0; k < count; ++k) {
+      BandEntry e;
+      e.particle = static_cast<std::uint32_t>(i);
+      e.group = static_cast<std::int32_t>(rng() % groups);
+      e.phi = 0.5 * (1 + u(rng));
+      e.grad_phi = Vec2{u(rng), u(rng)} * 1e3;
+      e.area = area[i];
+      e.in_film = rng() % 5 == 0;
+      band.push_back(e);
+    }
+  };
+  for (int pass = 0; pass < 2; ++pass)
+    for (std::size_t i = P.n_boundary; i < P.size(); ++i) add(i, 1 + static_cast<int>(rng() % 3));
+  return band;
+}
+
+bool same(Vec2 a, Vec2 b) { return a.x == b.x && a.y == b.y; }
+
+/// The host's particles and fields of the stage as the per-entry functions read them.
+LoadArrays host_arrays(const Solver& s, const LoadArrays& scalars) {
+  const Particles& P = s.particles();
+  LoadArrays a = scalars;
+  a.x = P.x.data();
+  a.m = P.m.data();
+  a.rho = P.rho.data();
+  a.p = P.p.data();
+  a.grad_v = s.host().grad_v().data();
+  a.lap_v = s.host().lap_v().data();
+  a.odd_even = s.host().odd_even();
+  a.grad_p_over_rho = s.host().grad_p_over_rho().data();
+  return a;
+}
+
+}  // namespace
+
+TEST(BandEntries, TheCpuBackendEvaluatesEveryEntryAsTheSharedFunctions) {
+  const Scene sc = build_scene(settling_cylinder());
+  Solver s(sc.params, sc.domain, sc.particles, sc.groups);
+  for (int k = 0; k < 3; ++k) ASSERT_FALSE(s.step().has_value());
+  ASSERT_NE(s.host().odd_even(), nullptr);
+  const std::size_t ng = s.groups().size();
+  const std::vector<BandEntry> band = random_band(s.particles(), ng);
+  ASSERT_GT(band.size(), 2 * kBandBlock) << "entries in several blocks";
+
+  // the constants only: the backend adds its own arrays
+  LoadArrays scalars;
+  scalars.domain = s.domain();
+  scalars.mu = sc.params.nu * sc.params.rho0;
+  scalars.nu = sc.params.nu;
+  scalars.rho0 = sc.params.rho0;
+  scalars.c2 = sc.params.c * sc.params.c;
+  scalars.p0 = sc.params.p0;
+  scalars.g_h = sc.params.gravity;
+  scalars.x_ref = s.domain().lo;
+  std::vector<Vec2> group_pos;
+  std::vector<real> group_level;
+  for (const RigidGroup& g : s.groups()) {
+    group_pos.push_back(g.pos);
+    group_level.push_back(sc.params.rho0 * scalars.c2 * (1 + 1e-3 * static_cast<real>(group_level.size())));
+  }
+  LoadArrays ref = host_arrays(s, scalars);
+  ref.group_pos = group_pos.data();
+  ref.group_level = group_level.data();
+
+  CpuBackend& host = s.host();
+  host.set_load_band(band);
+  std::vector<Vec2> num_den, fp, fv, torque, fd;
+  host.band_levels(scalars, num_den);
+  host.band_loads(scalars, group_pos, group_level, fp, fv, torque, fd);
+  ASSERT_EQ(num_den.size(), band.size());
+  ASSERT_EQ(fd.size(), band.size());
+  std::size_t damped = 0;
+  for (std::size_t e = 0; e < band.size(); ++e) {
+    real num, den;
+    band_entry_level(ref, band[e], num, den);
+    EXPECT_EQ(num_den[e].x, num) << e;
+    EXPECT_EQ(num_den[e].y, den) << e;
+    Vec2 efp, efv, et, efd;
+    band_entry_load(ref, band[e], efp, efv, et, efd);
+    EXPECT_TRUE(same(fp[e], efp) && same(fv[e], efv) && same(torque[e], et) && same(fd[e], efd)) << "entry " << e;
+    damped += norm2(efd) > 0;
+  }
+  EXPECT_GT(damped, band.size() / 2) << "the damping's share read from the stage's accelerations";
+
+  // a later band replaces the entries
+  const std::vector<BandEntry> fewer(band.begin() + 5, band.begin() + 20);
+  host.set_load_band(fewer);
+  host.band_levels(scalars, num_den);
+  ASSERT_EQ(num_den.size(), fewer.size());
+  for (std::size_t e = 0; e < fewer.size(); ++e) {
+    real num, den;
+    band_entry_level(ref, fewer[e], num, den);
+    EXPECT_EQ(num_den[e].x, num) << e;
+    EXPECT_EQ(num_den[e].y, den) << e;
+  }
+}
