@@ -17,14 +17,13 @@ writes in a file: keys left out take their defaults when the case is checked or 
 """
 import copy
 import json
-import math
 import numbers
 import os
 import re
 import tomllib
 
 from . import _core
-from .overrides import override_list
+from .overrides import override_list, toml_scalar
 
 _BARE_KEY = re.compile(r"^[A-Za-z0-9_-]+$")
 
@@ -39,17 +38,9 @@ def _value(v, path):
         v = v.tolist()
     if isinstance(v, str):
         return json.dumps(v, ensure_ascii=False)
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, numbers.Integral):
-        return str(int(v))
-    if isinstance(v, numbers.Real):
-        f = float(v)
-        if math.isnan(f):
-            return "nan"
-        if math.isinf(f):
-            return "inf" if f > 0 else "-inf"
-        return repr(f)
+    scalar = toml_scalar(v)
+    if scalar is not None:
+        return scalar
     if isinstance(v, (list, tuple)):
         return "[" + ", ".join(_value(x, "%s[%d]" % (path, i)) for i, x in enumerate(v)) + "]"
     if isinstance(v, dict):

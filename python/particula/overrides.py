@@ -3,12 +3,9 @@ import math
 import numbers
 
 
-def toml_value(value):
-    """A Python value as the TOML text `--set` takes: a str is passed through unchanged (exactly
-    what one writes after `--set key=`, e.g. "morris" or "[0, -9.81]"); bools, numbers (NumPy's
-    too) and sequences of them are written as TOML (floats in their shortest exact form)."""
-    if isinstance(value, str):
-        return value
+def toml_scalar(value):
+    """A bool or a number (NumPy's too) as TOML text (floats in their shortest exact form, nan
+    and inf as TOML writes them); None for anything else."""
     if isinstance(value, bool) or type(value).__name__ == "bool_":
         return "true" if value else "false"
     if isinstance(value, numbers.Integral):
@@ -20,6 +17,18 @@ def toml_value(value):
         if math.isinf(v):
             return "inf" if v > 0 else "-inf"
         return repr(v)
+    return None
+
+
+def toml_value(value):
+    """A Python value as the TOML text `--set` takes: a str is passed through unchanged (exactly
+    what one writes after `--set key=`, e.g. "morris" or "[0, -9.81]"); bools, numbers (NumPy's
+    too) and sequences of them are written as TOML (floats in their shortest exact form)."""
+    if isinstance(value, str):
+        return value
+    scalar = toml_scalar(value)
+    if scalar is not None:
+        return scalar
     if hasattr(value, "tolist"):  # a NumPy array
         return toml_value(value.tolist())
     if isinstance(value, (list, tuple)):
