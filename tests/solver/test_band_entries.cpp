@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "case_builders.hpp"
 #include "particula/case/case.hpp"
 #include "particula/scene/scene.hpp"
 #include "particula/solver/momentum_loads.hpp"
@@ -20,36 +21,16 @@ namespace {
 /// A free cylinder settling in a closed box of fluid under gravity (the fluid moving, the
 /// odd-even damping on).
 Case settling_cylinder() {
-  Case c = default_case();
-  c.name = "settling";
   const real L = 4e-3;
-  c.domain_min = {0, 0};
-  c.domain_max = {L, L};
-  c.d0 = 1.25e-4;
-  c.rho0 = 1000;
+  Case c = cases::closed_box(L, L, 1.25e-4);
+  c.name = "settling";
   c.nu = 1e-4;
-  c.c = 1;
-  c.t_end = 1;
-  c.output_interval = 1;
   c.gravity = {0, -9.81};
   c.gravity_in_fluid = true;
   c.force = ForceModel::Momentum;
   c.odd_even_damping = 0.01;
-  const Vec2 corners[4] = {{0, 0}, {L, 0}, {L, L}, {0, L}};
-  for (int k = 0; k < 4; ++k) {
-    WallSpec w;
-    w.name = "wall" + std::to_string(k);
-    w.from = corners[k];
-    w.to = corners[(k + 1) % 4];
-    c.walls.push_back(w);
-  }
-  BodySpec b;
-  b.name = "cylinder";
-  b.shape = BodyShape::Circle;
-  b.center = {L / 2, L / 2};
-  b.radius = 0.8e-3;
+  BodySpec b = cases::circle_body("cylinder", {L / 2, L / 2}, 0.8e-3);
   b.density = 1500;
-  b.motion = BodyMotion::Free;
   c.bodies = {b};
   return c;
 }
