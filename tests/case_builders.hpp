@@ -2,6 +2,10 @@
 // circular body to put in them.
 #pragma once
 
+#include <algorithm>
+#include <string>
+#include <vector>
+
 #include "particula/case/case.hpp"
 
 namespace particula::cases {
@@ -58,6 +62,23 @@ inline BodySpec circle_body(const char* name, Vec2 center, real radius, BodyMoti
   b.density = 2000;
   b.motion = motion;
   return b;
+}
+
+/// A closed container whose fixed walls run counter-clockwise through `corners` (the fluid
+/// fills the polygon), in the bounding box of the corners; water-like fluid under gravity.
+inline Case walled_polygon(const std::vector<Vec2>& corners, real d0) {
+  Case c = closed_box(1, 1, d0);
+  c.name = "container";
+  c.walls.clear();
+  c.domain_min = c.domain_max = corners.front();
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    const Vec2 a = corners[k], b = corners[(k + 1) % corners.size()];
+    c.walls.push_back({"side" + std::to_string(k), a, b, {}});
+    c.domain_min = {std::min(c.domain_min.x, a.x), std::min(c.domain_min.y, a.y)};
+    c.domain_max = {std::max(c.domain_max.x, a.x), std::max(c.domain_max.y, a.y)};
+  }
+  c.gravity = {0, -9.81};
+  return c;
 }
 
 }  // namespace particula::cases

@@ -115,9 +115,18 @@ CLI::App* add_validate(CLI::App& app, ValidateArgs& a) {
   validate->add_option("--case", a.opt.only,
                        "Run only this validation case, of any group (repeatable); with --check: whose checks to apply");
   auto* groups = validate->add_option("--group", a.groups,
-                                      "Run only this group: analytic, paper, benchmark or robustness (repeatable; "
-                                      "default: analytic, paper and benchmark, the robustness cases only when asked for)")
-                     ->check(CLI::IsMember({"analytic", "paper", "benchmark", "robustness"}));
+                                      "Run only this group: analytic, paper, benchmark, robustness or random (repeatable; "
+                                      "default: analytic, paper and benchmark, the robustness and random cases only when "
+                                      "asked for). random: the cases of `particula generate` for seeds 1 to --seeds, each "
+                                      "run to its end")
+                     ->check(CLI::IsMember({"analytic", "paper", "benchmark", "robustness", "random"}));
+  auto* seeds = validate->add_option("--seeds", a.opt.random_seeds,
+                                     "With --group random: how many seeds (default 200; 40 with --quick)")
+                    ->check(CLI::Range(1, 1000000));
+  auto* first_seed = validate->add_option("--first-seed", a.opt.random_first,
+                                          "With --group random: the first seed (default 1; to split a batch across "
+                                          "processes)")
+                         ->check(CLI::Range(1, 1000000000));
   auto* quiet = validate->add_flag("--quiet", a.opt.quiet, "Only the final line");
   validate->add_option("--check", a.check_dir,
                        "Run nothing: apply the checks of the run's validation case (or of --case NAME) to the existing "
@@ -128,6 +137,8 @@ CLI::App* add_validate(CLI::App& app, ValidateArgs& a) {
       ->excludes(threads)
       ->excludes(sets)
       ->excludes(groups)
+      ->excludes(seeds)
+      ->excludes(first_seed)
       ->excludes(quiet);
   auto* record = validate->add_flag("--record", a.opt.record,
                                     "Store each case's result (checks, outcome, figure data) under validation/results "
@@ -148,6 +159,7 @@ CLI::App* add_validate(CLI::App& app, ValidateArgs& a) {
   validate->footer(footer("  particula validate --quick --out runs/validate\n"
                           "  particula validate --case couette --case falling_cylinder --quick\n"
                           "  particula validate --group robustness --quick\n"
+                          "  particula validate --group random --seeds 200 --out runs/random\n"
                           "  particula validate --check runs/validate/dkt\n"
                           "  particula validate --check runs/pile --case settling_pile\n"
                           "  particula validate --case dkt --quick --record && particula validate --report\n"
@@ -176,6 +188,7 @@ int validate(ValidateArgs& a) {
     a.opt.groups.push_back(g == "analytic"    ? particula::ValidationGroup::Analytic
                            : g == "paper"     ? particula::ValidationGroup::Paper
                            : g == "benchmark" ? particula::ValidationGroup::Benchmark
+                           : g == "random"    ? particula::ValidationGroup::Random
                                               : particula::ValidationGroup::Robustness);
   return particula::validate_command(a.opt);
 }

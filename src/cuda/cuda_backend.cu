@@ -58,6 +58,7 @@ void CudaBackend::upload(const Particles& P) {
   ds_.upload(P.ds);
   acc_.upload(P.acc);
   normal_.upload(P.normal);
+  wedge_.upload(P.wedge);
   source_.upload(P.source);
   for (auto* a : {&rho_n_, &rho_s_, &p_n_, &vol_, &rc_, &div_v_, &scratch_real_}) a->resize(n_);
   for (auto* a : {&v_n_, &v_s_, &lapV_, &G_, &shift_dir_, &odd_even_}) a->resize(n_);
@@ -266,6 +267,8 @@ SweepContext CudaBackend::context() const {
   c.kind = kind_.data();
   c.group = group_.data();
   c.normal = normal_.data();
+  c.wedge = wedge_.data();
+  c.ds = ds_.data();
   c.near_a = near_a_.data();
   c.near_b = near_b_.data();
   c.film = film_.data();

@@ -128,7 +128,7 @@ class CudaBackend final : public Backend {
 
   // particle state
   DArray<Vec2> x_, v_, local_, normal_local_, acc_, normal_;
-  DArray<real> rho_, p_, m_, ds_;
+  DArray<real> rho_, p_, m_, ds_, wedge_;
   DArray<Kind> kind_;
   DArray<std::int32_t> group_, source_;
   DArray<std::int64_t> id_;

@@ -149,7 +149,7 @@ void CudaBackend::shift(real scale, real c_sound) {
   real* rho = rho_.data();
   const std::uint32_t* near_a = near_a_.data();
   const std::uint32_t* near_b = near_b_.data();
-  const Vec2* normal = normal_.data();
+  const SurfaceArrays surfaces{x, normal_.data(), wedge_.data(), ds_.data(), v};
   const Kind* kind = kind_.data();
   const OpenZone* zones = zones_.data();
   const std::size_t nz = zones_.size();
@@ -158,7 +158,7 @@ void CudaBackend::shift(real scale, real c_sound) {
     if (kind[i] != Kind::Fluid) return;  // buffers move with their boundary
     Vec2 d = dir[i];
     limit_shift_at_open_lines(zones, nz, x[i], h, d);
-    shift_particle(d, scale, gradV[i], G[i], gather_surfaces(near_a[i], near_b[i], x, normal, v), range,
+    shift_particle(d, scale, gradV[i], G[i], gather_surfaces(near_a[i], near_b[i], surfaces), range,
                    domain, c_sound, x[i], v[i], p[i], rho[i]);
   });
 }
@@ -166,15 +166,15 @@ void CudaBackend::shift(real scale, real c_sound) {
 void CudaBackend::guard_surfaces(real keep, SolverCounters& cnt) {
   const std::uint32_t* near_a = near_a_.data();
   const std::uint32_t* near_b = near_b_.data();
-  const Vec2* normal = normal_.data();
   const Domain domain = grid_.domain;
   Vec2* x = x_.data();
   Vec2* v = v_.data();
+  const SurfaceArrays surfaces{x, normal_.data(), wedge_.data(), ds_.data(), v};
   unsigned long long* counters = counters_.data();
   const Kind* kind = kind_.data();
   each(nb_, n_, [=] __device__(std::size_t i) {
     if (kind[i] != Kind::Fluid) return;
-    const GuardOutcome o = surface_guard_at(i, near_a, near_b, x, normal, v, keep, domain);
+    const GuardOutcome o = surface_guard_at(i, near_a, near_b, surfaces, x, v, keep, domain);
     if (o == GuardOutcome::Pushed) atomicAdd(&counters[kSurfacePushed], 1ull);
     if (o == GuardOutcome::Gap) atomicAdd(&counters[kGapSqueezed], 1ull);
   });

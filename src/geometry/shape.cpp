@@ -54,7 +54,10 @@ std::vector<SurfaceSample> sample_loop(const std::vector<Vec2>& v, real d0) {
   std::vector<SurfaceSample> out;
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t prev = (i + n - 1) % n;
-    out.push_back({v[i], unit(nrm[i] + nrm[prev]), 0.5 * (spacing[i] + spacing[prev]), true, {nrm[prev], nrm[i]}});
+    // the solid is on the left of the loop: a left turn at v[i] is a convex corner
+    const bool convex = cross(v[i] - v[prev], v[(i + 1) % n] - v[i]) > 0;
+    out.push_back({v[i], unit(nrm[i] + nrm[prev]), 0.5 * (spacing[i] + spacing[prev]), true, {nrm[prev], nrm[i]},
+                   convex ? half_angle_between(nrm[prev], nrm[i]) : real(0)});
     for (int k = 1; k < parts[i]; ++k)
       out.push_back({v[i] + (static_cast<real>(k) / parts[i]) * (v[(i + 1) % n] - v[i]), nrm[i], spacing[i], false, {}});
   }
@@ -374,7 +377,8 @@ std::vector<SurfaceSample> Shape::sample_surface(real d0) const {
         const real t = -0.5 * M_PI + M_PI * k / na;
         const Vec2 e{std::cos(t), std::sin(t)};
         if (k == 0 || k == na)
-          out.push_back({d + a_ * e, unit(e + Vec2{-1, 0}), 0.5 * (sa + sf), true, {e, Vec2{-1, 0}}});
+          out.push_back({d + a_ * e, unit(e + Vec2{-1, 0}), 0.5 * (sa + sf), true, {e, Vec2{-1, 0}},
+                         half_angle_between(e, Vec2{-1, 0})});
         else
           out.push_back({d + a_ * e, e, sa, false, {}});
       }

@@ -96,7 +96,8 @@ void check_sizes(const Checkpoint& c, const FailWith& fail) {
        {P.v.size(), P.rho.size(), P.p.size(), P.m.size(), P.kind.size(), P.group.size(), P.id.size()})
     if (size != n) fail("per-particle arrays of different sizes");
   for (std::size_t size :
-       {P.local.size(), P.normal_local.size(), P.ds.size(), P.acc.size(), P.normal.size(), P.source.size()})
+       {P.local.size(), P.normal_local.size(), P.ds.size(), P.acc.size(), P.normal.size(), P.wedge.size(),
+        P.source.size()})
     if (size != nb) fail("boundary arrays of the wrong size");
 }
 
@@ -232,7 +233,8 @@ void check_values(const Checkpoint& c, const FailWith& fail) {
     fail("non-finite kept load band");
   for (std::size_t i = 0; i < n; ++i) {
     if (i < nb && (!finite(P.local[i]) || !finite(P.normal_local[i]) || !finite(P.normal[i]) ||
-                   !finite(P.acc[i]) || !std::isfinite(P.ds[i]) || P.ds[i] < 0))
+                   !finite(P.acc[i]) || !std::isfinite(P.ds[i]) || P.ds[i] < 0 || !(P.wedge[i] >= 0) ||
+                   !(P.wedge[i] < 0.5 * M_PI)))
       fail(fmt::format("boundary data of particle {}", i));
     if (!finite(P.x[i]) || !finite(P.v[i]) || !std::isfinite(P.p[i]))
       fail(fmt::format("non-finite state of particle {}", i));

@@ -73,6 +73,16 @@ io::JsonObject run_summary(const Session& s, const RunEnd& end, std::optional<do
   if (s.resumed) summary.set("resumed_from", s.t_start);
   summary.set("dt_min", st.dt_min);
   summary.set("dt_max", st.dt_max);
+  // The steps against the case's own (Solver::case_dt): how far the step fell, and how often it
+  // stayed below kTimeStepDrop of it.
+  io::JsonObject drops;
+  drops.set("case_dt", solver.case_dt());
+  drops.set("dt_min_ratio", st.dt_min / solver.case_dt());
+  drops.set("threshold", kTimeStepDrop);
+  drops.set("steps_below", st.dt_drop_steps);
+  drops.set("reported_runs", st.dt_drop_reports);
+  if (!std::isnan(st.dt_drop_first_time)) drops.set("first_reported_at", st.dt_drop_first_time);
+  summary.set("time_step", drops);
   summary.set("overrides", s.overrides);
   add_legend(summary, s.c);
   summary.set("wall_seconds", wall);

@@ -138,6 +138,18 @@ void tell_caller(Session& s, double wall, bool last) {
   if (!s.progress(s.solver->time(), s.c.t_end, s.solver->step_count())) s.stopped_by_caller = true;
 }
 
+/// A run of kTimeStepDropSteps steps below kTimeStepDrop of the case's step: a warning in the
+/// log naming what limits the step and where (the run goes on; summary.json counts them).
+void report_time_step_drop(const Solver& solver, RunStats& stats, Reporter& rep) {
+  const real dt = solver.last_dt();
+  if (std::isnan(stats.dt_drop_first_time)) stats.dt_drop_first_time = solver.time();
+  const Failure why = solver.time_step_limit(dt);
+  rep.say(fmt::format("warning: the time step has been below {:g} of the case's {:.3g} s for {} steps (t = {:.9g} s, "
+                      "step {}, dt = {:.3g} s); it is limited by {}",
+                      kTimeStepDrop, solver.case_dt(), kTimeStepDropSteps, solver.time(), solver.step_count(), dt,
+                      why.what));
+}
+
 /// Steps to time.end, writing the outputs on their schedule and a checkpoint every
 /// output.checkpoint_interval; stops on max_steps, a signal or a failure (recorded in `end`).
 void step_to_end(Session& s, Reporter& rep, OutputWriter& write_outputs, io::ProgressLine& progress,
@@ -163,8 +175,9 @@ void step_to_end(Session& s, Reporter& rep, OutputWriter& write_outputs, io::Pro
     const real target = s.outputs->next_event(c.t_end);
     end.failure = solver.step_to(target);
     if (!end.failure) report_removed_bodies(solver, rep);
-    stats.add_step(solver.last_dt(), solver.time() == target, solver.particle_count(),
-                   solver.last_pair_count());
+    if (stats.add_step(solver.last_dt(), solver.time() == target, solver.particle_count(),
+                       solver.last_pair_count(), solver.case_dt()))
+      report_time_step_drop(solver, stats, rep);
     if (!end.failure) end.failure = write_outputs(false);
     if (end.failure) break;
     if (write_outputs.cancelled) continue;  // interrupted: the checkpoint is written below

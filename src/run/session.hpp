@@ -29,17 +29,31 @@ struct RunStats {
   /// Range of the steps the stability limits chose (steps shortened to land on an output or end
   /// time are left out: their size says nothing about the run); NaN before such a step.
   real dt_min = std::numeric_limits<real>::quiet_NaN(), dt_max = std::numeric_limits<real>::quiet_NaN();
+  /// Steps below kTimeStepDrop of the case's step: in all, in the current run of them, and the
+  /// runs of kTimeStepDropSteps or more (each reported once in the log), with the first one's time.
+  std::int64_t dt_drop_steps = 0, dt_drop_run = 0, dt_drop_reports = 0;
+  real dt_drop_first_time = std::numeric_limits<real>::quiet_NaN();
 
   double wall_seconds() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   }
-  /// Counts a step of `dt`, `capped` when it was shortened to land on a time.
-  void add_step(real dt, bool capped, std::size_t particles, std::size_t pairs) {
+  /// Counts a step of `dt`, `capped` when it was shortened to land on a time, against the
+  /// case's own step `case_dt`. Returns true when this step completes a run of
+  /// kTimeStepDropSteps steps below kTimeStepDrop case_dt (to be reported).
+  bool add_step(real dt, bool capped, std::size_t particles, std::size_t pairs, real case_dt) {
     particle_steps += static_cast<double>(particles);
     interactions += static_cast<double>(pairs);
-    if (capped) return;
+    if (capped) return false;
     dt_min = std::isnan(dt_min) ? dt : std::min(dt_min, dt);
     dt_max = std::isnan(dt_max) ? dt : std::max(dt_max, dt);
+    if (!(dt < kTimeStepDrop * case_dt)) {
+      dt_drop_run = 0;
+      return false;
+    }
+    ++dt_drop_steps;
+    if (++dt_drop_run != kTimeStepDropSteps) return false;
+    ++dt_drop_reports;
+    return true;
   }
 };
 

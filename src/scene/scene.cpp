@@ -391,8 +391,8 @@ Scene build_scene(const Case& c) {
     const std::size_t first_surface = b.size();
     for (const auto& sp : surf) {
       b.add(sp.x, sp.x - g.pos0, sp.normal, sp.ds,
-            sp.ds * d0 * (sp.corner ? corner_volume_factor(sp.wall_normal, sp.corner_normal2) : 1.0),
-            Kind::Boundary, -1, static_cast<std::int32_t>(w));
+            sp.ds * d0 * (sp.corner ? corner_volume_factor(sp.wall_normal, sp.corner_normal2, sp.wedge > 0) : 1.0),
+            Kind::Boundary, -1, static_cast<std::int32_t>(w), sp.wedge);
     }
     if (c.boundary == BoundaryModel::Dummy) {
       for (const auto& [x, s] : scene_detail::dummy_points(surf, d0, dummy_layers)) {
@@ -419,6 +419,7 @@ Scene build_scene(const Case& c) {
     P.local[i] = b.local[i];
     P.normal_local[i] = b.normal[i];
     P.normal[i] = b.normal[i];
+    P.wedge[i] = b.wedge[i];
     P.ds[i] = b.ds[i];
     P.kind[i] = b.kind[i];
     P.source[i] = b.source[i];

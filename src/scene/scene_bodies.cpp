@@ -101,8 +101,8 @@ struct BodyPlacement {
 
   /// A surface particle at x (local and normal_local in the body frame) standing for ds of surface.
   void add_surface(BoundaryArrays& b, Vec2 x, Vec2 local, Vec2 normal_local, real ds,
-                   real volume_factor) const {
-    b.add(x, local, normal_local, ds, ds * d0 * volume_factor, Kind::Boundary, -1, group);
+                   real volume_factor, real wedge = 0) const {
+    b.add(x, local, normal_local, ds, ds * d0 * volume_factor, Kind::Boundary, -1, group, wedge);
   }
 };
 
@@ -129,19 +129,20 @@ std::vector<std::size_t> add_body_surface(const Case& c, const BodyParams& bp,
     const SurfaceSample& smp = bp.samples[s];
     const Vec2 x = at.pos + rotate(smp.x, at.cth, at.sth);
     Vec2 normal = smp.normal;
-    real volume_factor = 1;
+    real volume_factor = 1, wedge = smp.wedge;
     if (motion == Motion::Fixed) {
       const PlacedSample ps = place_on_walls(smp, x, at.cth, at.sth, c);
       if (!ps.keep) continue;
       if (ps.junction) {
         normal = rotate(ps.normal, at.cth, -at.sth);  // back to the body frame
         volume_factor = ps.volume_factor;
+        wedge = 0;  // a concave corner of the fluid
       } else if (hidden_by_walls(x, walls, dom, crossings, at.d0)) {
         continue;
       }
     }
     kept.push_back(s);
-    at.add_surface(b, x, smp.x, normal, smp.ds, volume_factor);
+    at.add_surface(b, x, smp.x, normal, smp.ds, volume_factor, wedge);
   }
   return kept;
 }

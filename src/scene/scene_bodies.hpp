@@ -18,12 +18,14 @@ namespace particula::scene_detail {
 struct BoundaryArrays {
   std::vector<Vec2> x, local, normal;  // position, position in the group's frame, normal (group frame)
   std::vector<real> ds, volume;        // surface length (0 for a dummy), volume
+  std::vector<real> wedge;             // a convex corner's half angle (Particles::wedge)
   std::vector<Kind> kind;
   std::vector<std::int32_t> source, group;  // a dummy's surface particle (-1 for a surface one), its group
 
   std::size_t size() const { return x.size(); }
   void add(Vec2 at, Vec2 at_local, Vec2 n, real ds_, real volume_, Kind k, std::int32_t src,
-           std::int32_t grp) {
+           std::int32_t grp, real wedge_ = 0) {
+    wedge.push_back(wedge_);
     x.push_back(at);
     local.push_back(at_local);
     normal.push_back(n);

@@ -55,6 +55,8 @@ std::vector<SurfacePoint> sample_wall(const Case& c, const Domain& dom, std::siz
             sp.normal = mean / norm(mean);
             sp.corner = true;
             sp.corner_normal2 = n2;
+            // convex when this wall leaves the corner away from the other wall's fluid side
+            if (dot(piece.tangent_at(0), n2) < 0) sp.wedge = half_angle_between(nrm, n2);
           }
         }
     }
@@ -103,9 +105,12 @@ std::vector<std::pair<Vec2, std::size_t>> dummy_points(const std::vector<Surface
 /// fluid angle is 90 degrees the same moment at the corner fluid particle is 0.22/d0 with a
 /// unit factor and 0.03/d0 with a factor 2 (computed on the regular lattice): we scale the
 /// corner volume linearly in the solid wedge angle, 1 for a flat wall and 2 for a right-angled
-/// corner (docs/method.md section 6, M.6). Without it a loaded box corner blows up.
-real corner_volume_factor(Vec2 n1, Vec2 n2) {
-  const real fluid_angle = M_PI - std::acos(std::fmax(-1.0, std::fmin(1.0, dot(n1, n2))));
+/// corner (docs/method.md section 6, M.6). Without it a loaded box corner blows up. A convex
+/// corner of the solid (the inward corner of an L-shape: less solid behind it than behind a flat
+/// wall) keeps the flat wall's 1.
+real corner_volume_factor(Vec2 n1, Vec2 n2, bool convex) {
+  const real turn = std::acos(std::fmax(-1.0, std::fmin(1.0, dot(n1, n2))));
+  const real fluid_angle = convex ? M_PI + turn : M_PI - turn;
   const real solid_angle = 2 * M_PI - fluid_angle;
   return std::fmax(1.0, 2 * solid_angle / M_PI - 1);
 }

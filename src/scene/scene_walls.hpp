@@ -19,6 +19,8 @@ struct SurfacePoint {
   bool corner;
   Vec2 corner_normal2;  // the other wall's normal at a corner
   Vec2 wall_normal;     // this wall's own normal there
+  real wedge = 0;       // at a convex corner of the walls (the fluid wraps round it, an L-shape's
+                        // inward corner): half the angle between the two normals; 0 elsewhere
 };
 
 /// Samples wall w at spacing ~d0 (a segment's points equally spaced, an arc's equally spaced
@@ -29,8 +31,9 @@ std::vector<SurfacePoint> sample_wall(const Case& c, const Domain& dom, std::siz
 /// a corner gets the full block.
 std::vector<std::pair<Vec2, std::size_t>> dummy_points(const std::vector<SurfacePoint>& surf, real d0, int layers);
 
-/// Volume factor of a corner particle whose two walls have the fluid-side normals n1 and n2.
-real corner_volume_factor(Vec2 n1, Vec2 n2);
+/// Volume factor of a corner particle whose two walls have the fluid-side normals n1 and n2;
+/// `convex`: the solid's corner is convex (fluid angle above 180 degrees).
+real corner_volume_factor(Vec2 n1, Vec2 n2, bool convex = false);
 
 /// A point where a fixed body's surface crosses a wall (scene_junctions.cpp): on both, with the
 /// body's outward normal and the wall's fluid-side normal there (world frame).

@@ -48,6 +48,8 @@ SweepContext CpuBackend::sweep_context() const {
   c.kind = P_.kind.data();
   c.group = P_.group.data();
   c.normal = P_.normal.data();
+  c.wedge = P_.wedge.data();
+  c.ds = P_.ds.data();
   c.near_a = near_a_.empty() ? nullptr : near_a_.data();
   c.near_b = near_b_.empty() ? nullptr : near_b_.data();
   c.film = film_.empty() ? nullptr : film_.data();
@@ -283,12 +285,16 @@ void CpuBackend::shift(real scale, real c) {
   for (std::size_t i = 0; i < n; ++i) gradV_[i] = 0.5 * (gradV_[i] + gradV_n_[i]);
   if (!(scale > 0)) return;
   limit_shifting_at_open_lines();
+  const SurfaceArrays surfaces = surface_arrays();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = nb; i < n; ++i)
     if (P_.kind[i] == Kind::Fluid)
-      shift_particle(shift_dir_[i], scale, gradV_[i], G_[i],
-                   gather_surfaces(near_a_[i], near_b_[i], P_.x.data(), P_.normal.data(), P_.v.data()), prm_.d0,
-                   domain_, c, P_.x[i], P_.v[i], P_.p[i], P_.rho[i]);
+      shift_particle(shift_dir_[i], scale, gradV_[i], G_[i], gather_surfaces(near_a_[i], near_b_[i], surfaces),
+                     prm_.d0, domain_, c, P_.x[i], P_.v[i], P_.p[i], P_.rho[i]);
+}
+
+SurfaceArrays CpuBackend::surface_arrays() const {
+  return SurfaceArrays{P_.x.data(), P_.normal.data(), P_.wedge.data(), P_.ds.data(), P_.v.data()};
 }
 
 void CpuBackend::limit_shifting_at_open_lines() {
@@ -305,11 +311,12 @@ void CpuBackend::limit_shifting_at_open_lines() {
 void CpuBackend::guard_surfaces(real keep, SolverCounters& cnt) {
   const std::size_t n = P_.size(), nb = P_.n_boundary;
   std::int64_t pushed = 0, gap = 0;
+  const SurfaceArrays surfaces = surface_arrays();
 #pragma omp parallel for schedule(static) reduction(+ : pushed, gap)
   for (std::size_t i = nb; i < n; ++i) {
     if (P_.kind[i] != Kind::Fluid) continue;
     const GuardOutcome o =
-        surface_guard_at(i, near_a_.data(), near_b_.data(), P_.x.data(), P_.normal.data(), P_.v.data(), keep, domain_);
+        surface_guard_at(i, near_a_.data(), near_b_.data(), surfaces, P_.x.data(), P_.v.data(), keep, domain_);
     pushed += o == GuardOutcome::Pushed ? 1 : 0;
     gap += o == GuardOutcome::Gap ? 1 : 0;
   }

@@ -398,6 +398,7 @@ void erase_boundary_range(Particles& P, std::vector<RigidGroup>& groups, std::si
   erase(P.ds);
   erase(P.acc);
   erase(P.normal);
+  erase(P.wedge);
   erase(P.source);
   P.n_boundary -= count;
   for (std::int32_t& src : P.source)

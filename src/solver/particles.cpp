@@ -20,6 +20,7 @@ void Particles::resize_boundary(std::size_t nb) {
   ds.resize(nb);
   acc.resize(nb);
   normal.resize(nb);
+  wedge.resize(nb, 0);
   source.resize(nb, -1);
 }
 

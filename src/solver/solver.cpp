@@ -16,6 +16,7 @@
 #include "particula/bodies/rigid_motion.hpp"
 #include "particula/boundary/wall_pressure.hpp"
 #include "particula/fluid/fluid.hpp"
+#include "particula/solver/closest_pair.hpp"
 #include "particula/sph/operators.hpp"
 #include "phase_timer.hpp"
 
@@ -144,31 +145,53 @@ real Solver::body_force_dt() const {
   return a > 0 ? 0.25 * std::sqrt(prm_.h / a) : std::numeric_limits<real>::infinity();
 }
 
-std::optional<Failure> Solver::time_step_collapse(real dt) const {
-  // The step of the case's own scales: P.30 at the particle spacing and sound speed, P.31 at d0.
+real Solver::case_dt() const {
+  // P.30 at the particle spacing and sound speed, P.31 at d0, dt_max and the force condition.
   real dt_scale = prm_.cfl * prm_.d0 / prm_.c;
   if (prm_.nu > 0) dt_scale = std::min(dt_scale, prm_.cfl * prm_.d0 * prm_.d0 / prm_.nu);
   if (prm_.dt_max > 0) dt_scale = std::min(dt_scale, prm_.dt_max);
-  dt_scale = std::min(dt_scale, body_force_dt());
+  return std::min(dt_scale, body_force_dt());
+}
+
+std::optional<Failure> Solver::time_step_collapse(real dt) const {
+  const real dt_scale = case_dt();
   if (!(dt < kTimeStepCollapse * dt_scale)) return std::nullopt;
-  // Name the limit that collapsed: the closest particle pair, the fastest particle or a contact.
+  Failure f = time_step_limit(dt);
+  f.what = fmt::format(
+      "the time step collapsed to {:.3g} s, below {:g} of the case's {:.3g} s (cfl d0 / c, cfl d0^2 / nu); it is "
+      "limited by {}",
+      dt, kTimeStepCollapse, dt_scale, f.what);
+  return f;
+}
+
+Failure Solver::time_step_limit(real dt) const {
+  // Name the limit: a contact, the fastest particle or the closest particle pair (and where).
   const real dlist = backend_->min_distance();
   const real vmax = backend_->max_speed();
   std::string why;
-  if (contacts_.dt_limit() > 0 && contacts_.dt_limit() <= dt)
+  Failure f{{}, -1, Vec2{}};
+  if (contacts_.dt_limit() > 0 && contacts_.dt_limit() <= dt) {
     why =
         "the stability limit of a contact (t_c / 20): a contact too stiff for its bodies' masses "
         "(collision.*)";
-  else if (vmax > prm_.c)
+  } else if (vmax > prm_.c) {
     why = fmt::format("a particle at {:.3g} m/s, {:.3g} times the sound speed: the flow has blown up", vmax,
                       vmax / prm_.c);
-  else
+  } else {
     why = fmt::format("two particles {:.3g} d0 apart: particles collapsing onto each other", dlist / prm_.d0);
-  return Failure{
-      fmt::format("the time step collapsed to {:.3g} s, below {:g} of the case's {:.3g} s (cfl d0 / c, "
-                  "cfl d0^2 / nu); it is limited by {}",
-                  dt, kTimeStepCollapse, dt_scale, why),
-      -1, Vec2{}};
+    const Particles& P = particles();
+    const ClosestPair pair = closest_pair(P, domain_, prm_.h);
+    if (pair.found) {
+      const auto describe = [&](std::uint32_t i) {
+        return describe_particle(P, domain_, bodies_.groups(), prm_.h, prm_.d0, i);
+      };
+      why += fmt::format(" ({}; {})", describe(pair.i), describe(pair.j));
+      f.particle_id = P.id[pair.i];
+      f.position = P.x[pair.i];
+    }
+  }
+  f.what = why;
+  return f;
 }
 
 std::optional<Failure> Solver::step(real dt_cap) {

@@ -16,7 +16,9 @@
 #include "particula/io/vtk.hpp"
 #include "particula/scene/scene.hpp"
 #include "particula/solver/particles.hpp"
+#include "particula/solver/solver.hpp"
 #include "robustness_support.hpp"
+#include "run_outcome.hpp"
 
 namespace particula {
 
@@ -336,6 +338,13 @@ std::vector<double> kinetic_energy(const Case& c, const std::vector<BodyTrack>& 
 }
 
 }  // namespace
+
+std::vector<ValidationCheck> check_time_step_held(const fs::path& run_dir) {
+  const double ratio = read_outcome(run_dir).dt_min_ratio;
+  return {make_check("smallest time step / the case's own (cfl d0 / c, cfl d0^2 / nu)", ratio,
+                     fmt::format("{:.3g}", ratio), "of order 1", fmt::format(">= {:g}", kTimeStepDrop),
+                     ratio >= kTimeStepDrop)};
+}
 
 std::vector<ValidationCheck> check_kinetic_energy_decay(const fs::path& run_dir, const Case& c,
                                                         double max_fraction, double window) {

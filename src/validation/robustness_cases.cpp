@@ -342,6 +342,7 @@ Check with_containment(Check specific) {
     std::vector<ValidationCheck> out = specific ? specific(d, c) : std::vector<ValidationCheck>{};
     for (auto&& k : check_no_overlap(d, c)) out.push_back(std::move(k));
     for (auto&& k : check_fluid_contained(d, c)) out.push_back(std::move(k));
+    for (auto&& k : check_time_step_held(d)) out.push_back(std::move(k));
     return out;
   };
 }
@@ -419,6 +420,8 @@ std::vector<ValidationEntry> robustness_entries() {
                         return check_dilute_viscosity(d, c, 20);
                       })));
   v.push_back(entry("rotating_drum", with_containment({})));
+  v.push_back(entry("l_shaped_settling",
+                    with_containment([](const fs::path& d, const Case& c) { return settled(d, c, 0.02); })));
   // The gap of 0.1 d0 is tied to d0: the fine level gets its own schedules.
   v.push_back(entry("prescribed_squeeze", with_containment([](const fs::path& d, const Case& c) {
                       return check_prescribed_squeeze(d, c, 0.1);

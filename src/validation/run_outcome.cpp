@@ -107,6 +107,7 @@ RunOutcome read_outcome(const fs::path& run_dir) {
   o.steps = static_cast<std::int64_t>(number_or(summary, "steps", -1));
   o.end_time = number_or(summary, "end_time", std::nan(""));
   o.threads = static_cast<int>(number_or(summary, "threads", 0));
+  o.dt_min_ratio = number_or(summary, "dt_min_ratio", std::nan(""));
   o.wall_seconds = number_or(summary, "wall_seconds", std::nan(""));
   try {
     o.guards = io::json_object_numbers(summary, "guard_events");

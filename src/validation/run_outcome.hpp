@@ -19,6 +19,7 @@ struct RunOutcome {
   std::string failure;  // the message of an exit 3 (log.txt's last "error:" line)
   std::string commit;   // of the binary that ran (summary.json)
   std::vector<std::string> overrides;  // the run's --set (summary.json)
+  double dt_min_ratio = 0;  // the smallest step over the case's own (summary.json time_step; NaN when absent)
   int threads = 0;
   double wall_seconds = 0;
   std::string date;  // YYYY-MM-DD of log.txt's first line ("" when absent)

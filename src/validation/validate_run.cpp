@@ -40,13 +40,14 @@ const char* group_name(ValidationGroup g) {
     case ValidationGroup::Paper: return "paper";
     case ValidationGroup::Robustness: return "robustness";
     case ValidationGroup::Benchmark: return "benchmark";
+    case ValidationGroup::Random: return "random";
   }
   return "";
 }
 
 bool entry_selected(const ValidationEntry& entry, const ValidateOptions& opt) {
   if (!opt.only.empty()) return std::find(opt.only.begin(), opt.only.end(), entry.name) != opt.only.end();
-  if (opt.groups.empty()) return entry.group != ValidationGroup::Robustness;
+  if (opt.groups.empty()) return entry.group != ValidationGroup::Robustness;  // nor Random: no entries
   return std::find(opt.groups.begin(), opt.groups.end(), entry.group) != opt.groups.end();
 }
 
@@ -262,18 +263,22 @@ int validate_command(const ValidateOptions& opt) {
     results.push_back(std::move(r));
     if (interrupted) break;  // Ctrl-C stops the suite, not only the current run
   }
+  const bool random = std::find(opt.groups.begin(), opt.groups.end(), ValidationGroup::Random) != opt.groups.end();
+  RandomBatch batch;
+  if (random && (results.empty() || results.back().exit_code != 130)) batch = run_random_batch(opt);
   const fs::path report = opt.out_dir / "report.md";
   try {
-    io::write_file_atomic(report, report_markdown(results, opt));
+    io::write_file_atomic(report, report_markdown(results, opt) + batch.markdown);
   } catch (const io::IoError& e) {
     std::fprintf(stderr, "error: I/O failure: %s\n", e.what());
     return kExitIoFailure;
   }
-  if (!results.empty() && results.back().exit_code == 130) {
+  if ((!results.empty() && results.back().exit_code == 130) || batch.interrupted) {
     std::fprintf(stderr, "validate: interrupted; partial report in %s\n", report.string().c_str());
     return 130;
   }
-  const bool all = std::all_of(results.begin(), results.end(), [](const EntryResult& r) { return r.pass(); });
+  const bool all = std::all_of(results.begin(), results.end(), [](const EntryResult& r) { return r.pass(); }) &&
+                   (!random || batch.pass());
   std::fprintf(stderr, "validate: %s; report in %s\n", all ? "all cases pass" : "SOME CASES FAIL",
                report.string().c_str());
   return all ? 0 : 3;

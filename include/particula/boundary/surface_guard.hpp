@@ -21,6 +21,7 @@
 // nothing where the flow keeps the particle away (the paper's cases never trigger it).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "particula/core/types.hpp"
@@ -59,9 +60,24 @@ PARTICULA_HD void offer_surface(NearestSurfaces& s, std::uint32_t j, std::int32_
   }
 }
 
-/// A surface near a fluid particle: the tangent line at one surface particle.
+/// A surface near a fluid particle: the tangent line at one surface particle, as far as `reach`
+/// on either side (one surface spacing: the line stands for the surface there and no farther; a
+/// wall ends at a corner), or at a convex corner of the solid (a polygon body's vertex, the
+/// inward corner of an L-shaped container, where the fluid wraps round more than 180 degrees)
+/// the two sides that meet there.
 struct SurfaceTangent {
-  Vec2 x, n, v;  // position, outward unit normal (into the fluid), velocity
+  Vec2 x, n, v;    // position, outward unit normal (into the fluid; the bisector at a corner), velocity
+  real wedge = 0;  // at a convex corner of the solid: half the angle between the two sides' normals
+  real reach = 0;  // half-length of the stretch of tangent line that stands for the surface (0: unbounded)
+};
+
+/// The boundary arrays the surfaces are gathered from (Particles' boundary block); v may be null.
+struct SurfaceArrays {
+  const Vec2* x = nullptr;
+  const Vec2* n = nullptr;
+  const real* wedge = nullptr;
+  const real* ds = nullptr;
+  const Vec2* v = nullptr;
 };
 
 /// Up to two surfaces near a fluid particle (see NearestSurfaces).
@@ -70,19 +86,69 @@ struct NearSurfaces {
   SurfaceTangent s[2];
 };
 
-/// The surfaces of slots a and b gathered from the boundary arrays (positions, normals, and
-/// velocities unless v is null).
-PARTICULA_HD NearSurfaces gather_surfaces(std::uint32_t a, std::uint32_t b, const Vec2* x, const Vec2* n,
-                                          const Vec2* v) {
+/// The surface of surface particle j: its tangent line reaching one surface spacing ds_j.
+PARTICULA_HD SurfaceTangent surface_at(const SurfaceArrays& s, std::uint32_t j) {
+  return SurfaceTangent{s.x[j], s.n[j], s.v ? s.v[j] : Vec2{}, s.wedge[j], s.ds[j]};
+}
+
+/// The surfaces of slots a and b.
+PARTICULA_HD NearSurfaces gather_surfaces(std::uint32_t a, std::uint32_t b, const SurfaceArrays& s) {
   NearSurfaces out;
-  if (a != kNoSurface) out.s[out.count++] = SurfaceTangent{x[a], n[a], v ? v[a] : Vec2{}};
-  if (b != kNoSurface) out.s[out.count++] = SurfaceTangent{x[b], n[b], v ? v[b] : Vec2{}};
+  if (a != kNoSurface) out.s[out.count++] = surface_at(s, a);
+  if (b != kNoSurface) out.s[out.count++] = surface_at(s, b);
   return out;
 }
 
-/// Signed distance of x from the tangent line of surface point s (positive on the fluid side).
+/// Signed distance of x from the surface at s (positive on the fluid side) and the unit
+/// direction `away` in which it grows (the direction that moves x straight away from the solid).
+///   On a smooth surface, a flat wall and a concave corner of the solid (a box corner, where the
+///   fluid angle is below 180 degrees): the tangent line, d = (x - x_s) . n, away = n. At a
+///   concave corner the line through the corner across the bisector lies in the solid, so it
+///   keeps the fluid at least as far from both sides as the sides themselves would. The line
+///   stands for the surface within `reach` of x_s along it: beyond, the distance is the one
+///   from the end of that stretch, e = x_s +- reach t (away = (x - e) / |x - e|). The nearest
+///   surface particle of a smooth surface or a flat wall always has x's foot within reach (half
+///   a spacing on a flat wall, a little more outside a curve), so this changes nothing there;
+///   at the last particle of a wall that ends at a convex corner, the line ran on past the
+///   corner through the fluid.
+///   At a convex corner of the solid (wedge > 0): the solid is the wedge between the two sides,
+///   whose normals are n rotated by +-wedge, n1,2 = n cos(wedge) +- n_perp sin(wedge), and the
+///   distance is the one from that wedge: with r = x - x_s, |r| (away = r / |r|) where r lies in
+///   the corner's normal cone (within `wedge` of n: the corner point is the nearest point of the
+///   solid), else max(r . n1, r . n2) (away = that side's normal: the nearest point is on a
+///   side, or x is inside the solid). The tangent line there cut through the fluid beside the
+///   corner: a particle level with one side, past the corner, was 'below' the line and was thrown
+///   across the extension of the other side onto its neighbours.
+PARTICULA_HD real surface_distance(const Domain& domain, Vec2 x, const SurfaceTangent& s, Vec2& away) {
+  const Vec2 r = domain.separation(x, s.x);
+  const real dn = dot(r, s.n);
+  away = s.n;
+  if (!(s.wedge > 0)) {
+    const Vec2 t{-s.n.y, s.n.x};
+    const real along = dot(r, t);
+    if (!(s.reach > 0) || std::fabs(along) <= s.reach) return dn;
+    const Vec2 from_end = r - std::copysign(s.reach, along) * t;
+    const real len = norm(from_end);
+    away = from_end / len;
+    return len;
+  }
+  const real cw = std::cos(s.wedge), sw = std::sin(s.wedge);
+  const Vec2 t{-s.n.y, s.n.x};
+  const Vec2 n1 = cw * s.n + sw * t, n2 = cw * s.n - sw * t;
+  const real len = norm(r);
+  if (len > 0 && dn >= cw * len) {  // within the normal cone
+    away = r / len;
+    return len;
+  }
+  const real d1 = dot(r, n1), d2 = dot(r, n2);
+  away = d1 >= d2 ? n1 : n2;
+  return d1 >= d2 ? d1 : d2;
+}
+
+/// surface_distance without the direction.
 PARTICULA_HD real surface_distance(const Domain& domain, Vec2 x, const SurfaceTangent& s) {
-  return dot(domain.separation(x, s.x), s.n);
+  Vec2 away;
+  return surface_distance(domain, x, s, away);
 }
 
 /// What the guard did to one particle.
@@ -108,11 +174,12 @@ PARTICULA_HD GuardOutcome guard_surfaces(const NearSurfaces& ns, real keep, cons
   GuardOutcome out = GuardOutcome::None;
   for (int k = 0; k < ns.count; ++k) {
     const SurfaceTangent& s = ns.s[k];
-    const real d = surface_distance(domain, x, s);
+    Vec2 away;
+    const real d = surface_distance(domain, x, s, away);
     if (d >= keep) continue;
-    x = domain.wrap(x + (keep - d) * s.n);
-    const real vn = dot(v - s.v, s.n);
-    if (vn < 0) v -= vn * s.n;
+    x = domain.wrap(x + (keep - d) * away);
+    const real vn = dot(v - s.v, away);
+    if (vn < 0) v -= vn * away;
     out = GuardOutcome::Pushed;
   }
   return out;
@@ -143,12 +210,15 @@ PARTICULA_HD bool isolated(real others_fluid_support, real one_neighbour_support
 }
 
 /// Particle shifting never moves a particle towards a surface it is within `range` of (one
-/// particle spacing): the shift's component into that surface is removed.
+/// particle spacing): the shift's component into that surface (against surface_distance's
+/// `away`) is removed.
 PARTICULA_HD Vec2 limit_shift_at_surfaces(Vec2 dr, const NearSurfaces& ns, real range, const Domain& domain, Vec2 x) {
   for (int k = 0; k < ns.count; ++k) {
     const SurfaceTangent& s = ns.s[k];
-    const real into = dot(dr, s.n);
-    if (into < 0 && surface_distance(domain, x, s) < range) dr -= into * s.n;
+    Vec2 away;
+    const real d = surface_distance(domain, x, s, away);
+    const real into = dot(dr, away);
+    if (into < 0 && d < range) dr -= into * away;
   }
   return dr;
 }

@@ -3,6 +3,7 @@
 // The body frame's origin is the area centroid; `angle` rotates body to world frame.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,7 +25,14 @@ struct SurfaceSample {
   real ds;      // surface length it represents
   bool corner = false;  // a vertex where two sides meet (polygon vertex, end of a half-disc's flat side)
   Vec2 sides[2];        // at a corner: the outward normals of the two sides meeting there
+  real wedge = 0;       // at a convex corner (the fluid wraps round it): half the angle between
+                        // the sides' normals, the corner the surface guard sees; 0 elsewhere
 };
+
+/// Half the angle between the normals n1 and n2 of the two sides at a convex corner.
+inline real half_angle_between(Vec2 n1, Vec2 n2) {
+  return 0.5 * std::acos(std::fmax(-1.0, std::fmin(1.0, dot(n1, n2))));
+}
 
 class Shape {
  public:

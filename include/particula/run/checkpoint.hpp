@@ -34,7 +34,7 @@
 namespace particula {
 
 /// Bump when the layout or any field list below changes; older files are then refused.
-inline constexpr std::uint32_t kCheckpointVersion = 14;
+inline constexpr std::uint32_t kCheckpointVersion = 15;
 
 /// When an output stream ("bodies", "snapshots", "probe:<name>") was last written on its
 /// regular schedule. A resumed run drops rows after this time (the extra final-state rows of an
@@ -113,7 +113,7 @@ std::optional<std::string> why_not_checkpoint_target(const std::filesystem::path
 // the field count below, and bump kCheckpointVersion. tests/run/test_checkpoint.cpp and the
 // static_asserts in src/run/checkpoint.cpp fail until you do.
 
-inline constexpr std::size_t kParticlesFields = 16;  // n_boundary, next_id + 14 arrays
+inline constexpr std::size_t kParticlesFields = 17;  // n_boundary, next_id + 15 arrays
 inline constexpr std::size_t kRigidGroupFields = 29;
 inline constexpr std::size_t kSolverCountersFields = 12;
 inline constexpr std::size_t kOpenFluxFields = 6;
@@ -138,6 +138,7 @@ void particles_fields(Ar& ar, P& p) {
   ar(p.ds);
   ar(p.acc);
   ar(p.normal);
+  ar(p.wedge);
   ar(p.source);
 }
 

@@ -96,6 +96,8 @@ class CpuBackend final : public Backend {
   bool in_open_buffer(Vec2 x) const;
   /// Takes the normal part out of the shifting direction of fluid particles within h of an open line.
   void limit_shifting_at_open_lines();
+  /// The surface particles as the surface guard and the shifting limit read them.
+  SurfaceArrays surface_arrays() const;
   /// The constants of `scalars` with the host's particles and fields of the current stage.
   LoadArrays band_arrays(const LoadArrays& scalars) const;
 

@@ -37,6 +37,8 @@ struct Particles {
   std::vector<real> ds;             // surface length represented (0 for dummy particles)
   std::vector<Vec2> acc;            // acceleration of the surface point
   std::vector<Vec2> normal;         // current normal (P.18 or analytic)
+  std::vector<real> wedge;          // at a convex corner of the solid: half the angle between the
+                                    // two sides' normals (boundary/surface_guard.hpp); 0 elsewhere
   std::vector<std::int32_t> source; // dummy particles: the surface particle they copy P, rho from
 
   std::size_t size() const { return x.size(); }

@@ -38,6 +38,12 @@ namespace particula {
 /// collapse: 1e4 times more steps than the case was sized for.
 inline constexpr real kTimeStepCollapse = 1e-4;
 
+/// A stable time step below this fraction of the case's own for kTimeStepDropSteps steps in a
+/// row is reported in the log and summary.json (the run goes on): a thousand times more steps
+/// than the case was sized for is a defect to look at, even where the run reaches its end.
+inline constexpr real kTimeStepDrop = 1e-3;
+inline constexpr int kTimeStepDropSteps = 10;
+
 
 /// How a solver starts: from a freshly built scene (boundary pressures are initialized from
 /// P.20) or from a checkpointed state (taken exactly as it is, so a resumed run is bitwise
@@ -85,6 +91,13 @@ class Solver {
   /// The force condition 0.25 sqrt(h / |f|) of the body force and gravity on the fluid
   /// (infinite without either).
   real body_force_dt() const;
+  /// The step of the case's own scales: P.30 at d0 and the sound speed, P.31 at d0, dt_max and
+  /// the force condition. A step far below it has collapsed (kTimeStepCollapse, kTimeStepDrop).
+  real case_dt() const;
+  /// What limits a step of `dt` now, in words (a contact, a particle faster than sound, or the
+  /// closest pair with both particles and their nearest surfaces), with the place (the first
+  /// particle of the closest pair; none for the other two).
+  Failure time_step_limit(real dt) const;
 
   /// Guard counters (checkpoints carry them so a resumed run reports totals).
   void set_counters(const SolverCounters& c) { counters_ = c; }

@@ -52,6 +52,8 @@ struct SweepContext {
   const Kind* kind = nullptr;
   const std::int32_t* group = nullptr;  // rigid group of a boundary particle (nearest surfaces)
   const Vec2* normal = nullptr;         // outward normals of the surface particles
+  const real* wedge = nullptr;          // their convex corners' half angles (Particles::wedge)
+  const real* ds = nullptr;             // their surface spacings (Particles::ds)
   // the nearest surface particles of each fluid particle, from this step's geometry sweep
   const std::uint32_t* near_a = nullptr;
   const std::uint32_t* near_b = nullptr;

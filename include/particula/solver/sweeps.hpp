@@ -254,11 +254,13 @@ PARTICULA_HD void shift_particle(Vec2 direction, real scale, const Mat2& grad_v,
 
 /// The surface guard of fluid particle i (boundary/surface_guard.hpp) against its nearest
 /// surface particles near_a[i], near_b[i] of this step's geometry sweep, whose positions,
-/// normals and velocities are those of the end of the step. Race-free in one loop: it reads
+/// normals and velocities (`surfaces`, over the same arrays as x and v) are those of the end of
+/// the step. Race-free in one loop: it reads
 /// boundary particles and writes only fluid particle i.
 PARTICULA_HD GuardOutcome surface_guard_at(std::size_t i, const std::uint32_t* near_a, const std::uint32_t* near_b,
-                                           Vec2* x, const Vec2* normal, Vec2* v, real keep, const Domain& domain) {
-  const NearSurfaces ns = gather_surfaces(near_a[i], near_b[i], x, normal, v);
+                                           const SurfaceArrays& surfaces, Vec2* x, Vec2* v, real keep,
+                                           const Domain& domain) {
+  const NearSurfaces ns = gather_surfaces(near_a[i], near_b[i], surfaces);
   return guard_surfaces(ns, keep, domain, x[i], v[i]);
 }
 
@@ -355,7 +357,7 @@ PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContext& c, std::size_t i
 /// once per step into SweepContext::film, after the geometry sweep (which writes the normals).
 PARTICULA_HD real film_fraction_at(const SweepContext& c, std::size_t i, real film_gap) {
   if (i < c.nb || !(film_gap > 0) || c.near_a == nullptr) return 0;
-  return film_fraction(gather_surfaces(c.near_a[i], c.near_b[i], c.x, c.normal, nullptr), film_gap, c.domain, c.x[i]);
+  return film_fraction(gather_surfaces(c.near_a[i], c.near_b[i], SurfaceArrays{c.x, c.normal, c.wedge, c.ds, nullptr}), film_gap, c.domain, c.x[i]);
 }
 
 /// Velocity derivatives of the new V at particle i, then its continuity stage from rho_start.

@@ -41,6 +41,10 @@ std::vector<ValidationCheck> check_no_overlap(const std::filesystem::path& run_d
 /// Over every snapshot: fluid particles outside the domain (across a non-periodic edge) and
 /// fluid particles more than `depth` d0 inside a body (pose from bodies.csv at the snapshot's
 /// time); fails when there is any.
+/// The time step never fell below kTimeStepDrop (1e-3) of the case's own (summary.json's
+/// time_step.dt_min_ratio): a step that collapses is a defect even where the run reaches its end.
+std::vector<ValidationCheck> check_time_step_held(const std::filesystem::path& run_dir);
+
 std::vector<ValidationCheck> check_fluid_contained(const std::filesystem::path& run_dir, const Case& c,
                                                    double depth = 0.5);
 /// Kinetic energy of the free bodies (translation and rotation): its mean over the rows of the last

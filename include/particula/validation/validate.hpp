@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -50,9 +51,11 @@ struct ValidationPlot {
 };
 
 /// The groups of `particula validate --group`.
-enum class ValidationGroup { Analytic, Paper, Robustness, Benchmark };
+enum class ValidationGroup { Analytic, Paper, Robustness, Benchmark, Random };
 
-/// The group's name on the command line ("analytic", "paper", "robustness", "benchmark").
+/// The group's name on the command line ("analytic", "paper", "robustness", "benchmark",
+/// "random"). The random group has no entries: it is the batch of generated cases
+/// (validate_random.cpp, run_random_batch).
 const char* group_name(ValidationGroup g);
 
 /// One validation case: a shipped case file run at the quick or the default level, and how to
@@ -157,7 +160,26 @@ struct ValidateOptions {
   /// data `particula validate --report` generates docs/validation.md from.
   bool record = false;
   std::filesystem::path results_dir;  // empty: validation/results of the source tree
+  /// The random group: this many seeds (0: 200, or 40 with --quick) from `random_first`.
+  int random_seeds = 0;
+  int random_first = 1;
 };
+
+/// The random group: the cases of `particula generate` for N seeds from the first (ValidateOptions), each
+/// written to OUT/random/seed_N.toml and run to its end in OUT/random/seed_N. A case refused at
+/// load is counted, not failed; the batch passes when no run ends with exit 3 (or any code but
+/// 0) and no run's time step falls below kTimeStepDrop of its case's own. `markdown` is the
+/// report's section: the counts (generated, refused, finished, exit 3, the smallest step ratio)
+/// and a row per seed.
+struct RandomBatch {
+  int generated = 0, refused = 0, finished = 0, failed = 0, collapsed = 0;
+  double smallest_ratio = 1e300;
+  std::uint64_t smallest_seed = 0;
+  bool interrupted = false;
+  std::string markdown;
+  bool pass() const { return failed == 0 && collapsed == 0 && !interrupted; }
+};
+RandomBatch run_random_batch(const ValidateOptions& opt);
 
 /// The two levels of the suite, as named in stored results and in docs/validation.md.
 inline const char* level_name(bool quick) { return quick ? "quick" : "default"; }
