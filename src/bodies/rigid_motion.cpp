@@ -1,8 +1,28 @@
 #include "particula/bodies/rigid_motion.hpp"
 
+#include <cmath>
+
 namespace particula {
 
-void free_body_stage(RigidGroup& g, Vec2 v0, real omega0, Vec2 force, real torque, real dt, real added_mass) {
+SurfaceMoments surface_moments(const std::vector<SurfaceSample>& samples) {
+  SurfaceMoments m;
+  real nxx = 0, nxy = 0, nyy = 0;  // sum n n^T ds
+  for (const SurfaceSample& s : samples) {
+    const real lever = cross(s.x, s.normal);
+    m.length += s.ds;
+    nxx += s.normal.x * s.normal.x * s.ds;
+    nxy += s.normal.x * s.normal.y * s.ds;
+    nyy += s.normal.y * s.normal.y * s.ds;
+    m.lever += lever * lever * s.ds;
+    m.radius += dot(s.x, s.x) * s.ds;
+  }
+  // the larger eigenvalue of the symmetric 2x2 sum
+  m.normal = 0.5 * (nxx + nyy) + std::sqrt(0.25 * (nxx - nyy) * (nxx - nyy) + nxy * nxy);
+  return m;
+}
+
+void free_body_stage(RigidGroup& g, Vec2 v0, real omega0, Vec2 force, real torque, real dt, real added_mass,
+                     real added_inertia) {
   if (added_mass > 0) {
     const Vec2 a = (force + added_mass * g.acc) / (g.mass + added_mass);
     g.vel = v0 + dt * a;
@@ -11,8 +31,14 @@ void free_body_stage(RigidGroup& g, Vec2 v0, real omega0, Vec2 force, real torqu
     g.vel = v0 + (dt / g.mass) * force;
     g.acc = (g.vel - v0) / dt;
   }
-  g.omega = omega0 + dt * torque / g.inertia;
-  g.alpha = (g.omega - omega0) / dt;
+  if (added_inertia > 0) {
+    const real alpha = (torque + added_inertia * g.alpha) / (g.inertia + added_inertia);
+    g.omega = omega0 + dt * alpha;
+    g.alpha = alpha;
+  } else {
+    g.omega = omega0 + dt * torque / g.inertia;
+    g.alpha = (g.omega - omega0) / dt;
+  }
 }
 
 void free_body_update(RigidGroup& g, Vec2 v_n, real omega_n, real dt) {

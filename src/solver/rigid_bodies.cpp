@@ -16,7 +16,11 @@
 namespace particula {
 
 RigidBodies::RigidBodies(const PhysicsParams& prm, std::vector<RigidGroup> groups)
-    : prm_(prm), groups_(std::move(groups)) {}
+    : prm_(prm), groups_(std::move(groups)), surface_(groups_.size()) {
+  for (std::size_t k = 0; k < groups_.size(); ++k)
+    if (groups_[k].body >= 0)
+      surface_[k] = surface_moments(prm_.bodies[static_cast<std::size_t>(groups_[k].body)].samples);
+}
 
 const std::vector<GroupMotion>& RigidBodies::motions() {
   motions_.resize(groups_.size());
@@ -52,8 +56,11 @@ void RigidBodies::surface_loads(Backend& backend) {
 void RigidBodies::advance_free(RigidGroup& g, std::size_t k, real dt) const {
   const Vec2 weight = body_weight(g.mass, g.area, prm_.rho0, prm_.gravity, prm_.gravity_in_fluid);
   const Vec2 force = g.force_pressure + g.force_viscous + g.force_collision + weight;
+  // the fluid's one-stage answer to the body's accelerations (docs/method.md, "Light bodies")
+  const real m1 = stage_added_mass(prm_.rho0, prm_.d0, prm_.nu, dt, surface_[k]);
+  const real i1 = stage_added_inertia(prm_.rho0, prm_.d0, prm_.nu, dt, surface_[k]);
   free_body_stage(g, v0_[k], w0_[k], force, g.torque + g.torque_collision, dt,
-                  stabilizing_added_mass(prm_.rho0, g.area, g.mass));
+                  stabilizing_added_mass(prm_.rho0, g.area, g.mass, m1), stabilizing_added_inertia(i1, g.inertia));
 }
 
 void RigidBodies::set_prescribed(RigidGroup& g, real t, bool place) const {

@@ -1,5 +1,6 @@
 // Solver behaviour: thread-count independence, the dummy-particle baseline, the blow-up
 // guard, and the neighbour list against a brute-force search.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -118,8 +119,12 @@ TEST(Solver, CollapsedTimeStepStopsTheRunAndNamesTheClosestPair) {
   const Case c = busy_box();
   Scene scene = build_scene(c);
   Particles& P = scene.particles;
-  const std::size_t a = P.n_boundary + (P.size() - P.n_boundary) / 2, b = a + 1;
-  ASSERT_LT(b, P.size());
+  // a: the lowest fluid particle (next to the bottom wall); b moved onto it
+  std::size_t a = P.n_boundary;
+  for (std::size_t i = P.n_boundary; i < P.size(); ++i)
+    if (P.x[i].y < P.x[a].y) a = i;
+  const std::size_t b = a + 1 < P.size() ? a + 1 : a - 1;
+  ASSERT_GT(b, P.n_boundary);
   P.x[b] = P.x[a] + Vec2{1e-6 * c.d0, 0};
   Solver s(scene.params, scene.domain, P, scene.groups);
   const std::optional<Failure> f = s.step();
@@ -127,6 +132,13 @@ TEST(Solver, CollapsedTimeStepStopsTheRunAndNamesTheClosestPair) {
   EXPECT_NE(f->what.find("time step collapsed"), std::string::npos) << f->what;
   EXPECT_NE(f->what.find("particles collapsing"), std::string::npos) << f->what;
   EXPECT_EQ(s.step_count(), 0);
+  // where: the pair's first particle (not the origin), both particles and their nearest surfaces
+  EXPECT_EQ(f->particle_id, P.id[a]);
+  EXPECT_EQ(f->position.x, P.x[a].x);
+  EXPECT_EQ(f->position.y, P.x[a].y);
+  EXPECT_NE(f->what.find(fmt::format("fluid particle {} at", P.id[a])), std::string::npos) << f->what;
+  EXPECT_NE(f->what.find(fmt::format("fluid particle {} at", P.id[b])), std::string::npos) << f->what;
+  EXPECT_NE(f->what.find("d0 from wall '"), std::string::npos) << f->what;
   // The same box without the pair steps normally: the guard does not fire on a healthy case.
   Solver healthy = make_solver(c);
   for (int k = 0; k < 20; ++k) ASSERT_FALSE(healthy.step().has_value());
