@@ -31,7 +31,7 @@ std::string container_of(const std::string& text) {
   return kind;
 }
 
-std::string cell(std::string s) {
+std::string table_cell(std::string s) {
   for (char& ch : s)
     if (ch == '|' || ch == '\n') ch = '/';
   return s;
@@ -57,7 +57,7 @@ RandomBatch run_random_batch(const ValidateOptions& opt) {
       load_case(case_file);
     } catch (const CaseError& e) {
       ++b.refused;
-      rows += fmt::format("| {} | {} | refused at load | | | {} |\n", seed, kind, cell(e.what()));
+      rows += fmt::format("| {} | {} | refused at load | | | {} |\n", seed, kind, table_cell(e.what()));
       if (!opt.quiet) std::fprintf(stderr, "validate: random seed %d refused at load\n", k);
       continue;
     }
@@ -86,7 +86,7 @@ RandomBatch run_random_batch(const ValidateOptions& opt) {
     const std::string verdict = code == 0 ? (collapsed ? "**time step below 1e-3**" : "finished")
                                           : fmt::format("**exit {}**", code);
     rows += fmt::format("| {} | {} | {} | {} | {:.3g} | {} |\n", seed, kind, verdict, o.steps, ratio,
-                        cell(o.failure.empty() ? fmt::format("{:.1f} s wall", wall) : o.failure));
+                        table_cell(o.failure.empty() ? fmt::format("{:.1f} s wall", wall) : o.failure));
     if (!opt.quiet)
       std::fprintf(stderr, "validate: random seed %d (%s): %s, %lld steps, smallest dt / case's %.3g, %.1f s\n", k,
                    kind.c_str(), code == 0 ? "finished" : "FAILED", static_cast<long long>(o.steps), ratio, wall);

@@ -145,7 +145,7 @@ TEST_P(RobustnessCases, CoarseLevelFinishesAndPassesItsChecks) {
 /// in a pile or to slide down the slope, the suspensions need 10 and 20 strain units for the
 /// statistics of their viscosity, and the channels at Re 1, 10 and 100 need 2 to 3 minutes on one
 /// core for their flows to develop (all pass; Re 0.1 stays in CI for the steady channel's checks;
-/// rotating_drum takes 19 minutes on one core). incline_slide, sheared_suspension and
+/// rotating_drum takes 19 minutes on one core; l_shaped_settling about 10). incline_slide, sheared_suspension and
 /// cylinder_channel_re1 are here to keep CI under 20 minutes. CI runs a short version of those with
 /// a value here: the case up to this time (s), through the first contacts and the gaps that close,
 /// where it must not stop with exit 3 (0: no short version).
@@ -154,7 +154,7 @@ const std::map<std::string, double> kLong = {
     {"incline_slide", 0.2},        {"sheared_suspension", 3},   {"dilute_shear_phi005", 0},
     {"dilute_shear_phi010", 0},    {"cylinder_channel_re1", 0}, {"cylinder_channel_re10", 0},
     {"cylinder_channel_re100", 0}, {"fluidized_bed", 0},        {"particle_channel", 0},
-    {"rotating_drum", 0}};
+    {"rotating_drum", 0},          {"l_shaped_settling", 0.12}};
 
 /// The robustness cases in CI (`long_cases` false) or too long for it (true), in report order.
 std::vector<std::string> robustness_names(bool long_cases) {
