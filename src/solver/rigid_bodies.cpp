@@ -60,7 +60,8 @@ void RigidBodies::advance_free(RigidGroup& g, std::size_t k, real dt) const {
   const real m1 = stage_added_mass(prm_.rho0, prm_.d0, prm_.nu, dt, surface_[k]);
   const real i1 = stage_added_inertia(prm_.rho0, prm_.d0, prm_.nu, dt, surface_[k]);
   free_body_stage(g, v0_[k], w0_[k], force, g.torque + g.torque_collision, dt,
-                  stabilizing_added_mass(prm_.rho0, g.area, g.mass, m1), stabilizing_added_inertia(i1, g.inertia));
+                  stabilizing_added_mass(prm_.rho0, g.area, g.mass, m1),
+                  stabilizing_added_inertia(i1, g.inertia));
 }
 
 void RigidBodies::set_prescribed(RigidGroup& g, real t, bool place) const {

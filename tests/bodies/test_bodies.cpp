@@ -210,7 +210,8 @@ TEST(RigidMotion, SurfaceMomentsOfCircleAndRectangle) {
   // = 4 (a^3 + b^3) / 3, radius = lever + 4 (a b^2 + b a^2), normal = 4a (the long sides). A
   // corner sample carries the bisector normal, which lowers the lever by O(d0 / a).
   const real a = 1.5e-3, b = 0.5e-3, lever = 4 * (a * a * a + b * b * b) / 3;
-  const SurfaceMoments r = surface_moments(Shape::polygon({{-a, -b}, {a, -b}, {a, b}, {-a, b}}).sample_surface(d0 / 4));
+  const SurfaceMoments r =
+      surface_moments(Shape::polygon({{-a, -b}, {a, -b}, {a, b}, {-a, b}}).sample_surface(d0 / 4));
   EXPECT_NEAR(r.length, 4 * (a + b), 1e-9 * a);
   EXPECT_NEAR(r.normal, 4 * a, d0);
   EXPECT_NEAR(r.lever, lever, 0.03 * lever);  // 1.6 % low measured
@@ -250,11 +251,13 @@ TEST(RigidMotion, StabilizingAddedInertiaDampsTheLaggedReaction) {
   };
   for (real Ia : {0.5 * I1, I1, 2 * I1, 3.5 * I1}) {
     real factor = 0;
-    EXPECT_NEAR(run(Ia, Is, 400, nullptr), T / (I + Ia), 1e-6 * T / (I + Ia)) << "I_a = " << Ia / I1 << " I_1";
+    EXPECT_NEAR(run(Ia, Is, 400, nullptr), T / (I + Ia), 1e-6 * T / (I + Ia))
+        << "I_a = " << Ia / I1 << " I_1";
     run(Ia, Is, 5, &factor);
     EXPECT_NEAR(factor, (Is - Ia) / (I + Is), 1e-9) << "the amplification factor";
     EXPECT_LT(std::fabs(factor), 1.0);
-    EXPECT_FALSE(std::fabs(run(Ia, 0, 100, nullptr)) < 100 * T / I) << "the paper's stage diverges for I_a > I";
+    EXPECT_FALSE(std::fabs(run(Ia, 0, 100, nullptr)) < 100 * T / I)
+        << "the paper's stage diverges for I_a > I";
   }
 }
 
@@ -263,7 +266,8 @@ TEST(RigidMotion, StabilizingAddedMassCoversTheOneStageLayer) {
   EXPECT_EQ(stabilizing_added_mass(rho, A, 1250 * A), 0);
   EXPECT_DOUBLE_EQ(stabilizing_added_mass(rho, A, 100 * A), 900 * A) << "rho_f A - M where it is the larger";
   EXPECT_DOUBLE_EQ(stabilizing_added_mass(rho, A, 100 * A, 0.3 * rho * A), 900 * A);
-  EXPECT_DOUBLE_EQ(stabilizing_added_mass(rho, A, 100 * A, 0.8 * rho * A), 1500 * A) << "2 m_1 - M for a slender body";
+  EXPECT_DOUBLE_EQ(stabilizing_added_mass(rho, A, 100 * A, 0.8 * rho * A), 1500 * A)
+      << "2 m_1 - M for a slender body";
   EXPECT_DOUBLE_EQ(stabilizing_added_mass(rho, A, 1250 * A, 0.8 * rho * A), 350 * A);
   // the estimates: the layer of (P.20) and the viscous layer of a stage
   SurfaceMoments m;
@@ -486,7 +490,8 @@ TEST(BodiesInFluid, LightBodiesOfAnyShapeDoNotSpinUp) {
       }
       worst = std::max(worst, std::fabs(s.groups().back().omega));
     }
-    std::printf("%s of %.0f kg/m^3: max |omega| %.3g rad/s over 100 steps\n", b.name.c_str(), b.density, worst);
+    std::printf("%s of %.0f kg/m^3: max |omega| %.3g rad/s over 100 steps\n", b.name.c_str(), b.density,
+                worst);
     EXPECT_LT(worst, 5.0) << b.name;  // 0.32, 0.20 and 0.12 rad/s measured
   }
 }

@@ -76,8 +76,8 @@ PARTICULA_HD real stabilizing_added_inertia(real stage_inertia, real inertia) {
 /// m_s a (I_s alpha) terms cancel when the acceleration settles, so the stage is consistent; in
 /// between the amplification factor of an acceleration error is (m_s - m_a) / (M + m_s), that of
 /// an angular one (I_s - I_a) / (I + I_s).
-void free_body_stage(RigidGroup& g, Vec2 v0, real omega0, Vec2 force, real torque, real dt, real added_mass = 0,
-                     real added_inertia = 0);
+void free_body_stage(RigidGroup& g, Vec2 v0, real omega0, Vec2 force, real torque, real dt,
+                     real added_mass = 0, real added_inertia = 0);
 
 /// End of step (P.32 for the velocities): V^{n+1} = (V** + V^n)/2, the same for Omega, and the
 /// centre and angle advanced with the mean of the old and new velocities, which is exact for a

@@ -60,7 +60,8 @@ class RigidBodies {
   std::vector<RigidGroup> groups_;
   std::vector<Vec2> v0_;   // each group's velocity at the stage start
   std::vector<real> w0_;   // and its angular velocity
-  std::vector<SurfaceMoments> surface_;  // each body's surface moments (stage_added_mass, stage_added_inertia)
+  // each body's surface moments (stage_added_mass, stage_added_inertia)
+  std::vector<SurfaceMoments> surface_;
   std::vector<GroupMotion> motions_;
   std::vector<GroupLoads> loads_;  // the backend's surface sums
 };
