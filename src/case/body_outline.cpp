@@ -41,7 +41,8 @@ void sample_loop(const std::vector<Vec2>& v, std::size_t n, real L, std::vector<
   for (std::size_t i = 0; i < v.size(); ++i) {
     const Vec2 p = v[i], q = v[(i + 1) % v.size()];
     const auto parts = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(n * norm(q - p) / L)));
-    for (std::size_t j = 0; j < parts; ++j) out.push_back(p + (static_cast<real>(j) / static_cast<real>(parts)) * (q - p));
+    for (std::size_t j = 0; j < parts; ++j)
+      out.push_back(p + (static_cast<real>(j) / static_cast<real>(parts)) * (q - p));
   }
 }
 
@@ -57,7 +58,9 @@ const std::string& shape_name(BodyShape s) {
   return find_key("body[].shape")->choices.at(static_cast<std::size_t>(s));
 }
 
-std::string body_text(const BodySpec& b) { return fmt::format("body '{}' ({})", b.name, shape_name(b.shape)); }
+std::string body_text(const BodySpec& b) {
+  return fmt::format("body '{}' ({})", b.name, shape_name(b.shape));
+}
 
 real twice_area(const std::vector<Vec2>& v) {
   real a = 0;
@@ -264,6 +267,26 @@ std::vector<Vec2> Outline::boundary(std::size_t n) const {
     }
   }
   return out;
+}
+
+real gap_to_wall(const Outline& o, const std::vector<Vec2>& samples, const WallPiece& w) {
+  if (o.body->shape == BodyShape::Circle) return w.nearest(o.center).distance - o.body->radius;
+  if (o.contains(w.start(), 0))
+    return 0;  // the wall lies inside (it would come near the boundary if it left)
+  real gap = std::numeric_limits<real>::infinity();
+  for (const Vec2 p : samples) gap = std::min(gap, w.nearest(p).distance);
+  return gap;
+}
+
+real outline_gap(const Outline& A, const Outline& B, Vec2 shift, std::size_t points) {
+  if (A.body->shape == BodyShape::Circle && B.body->shape == BodyShape::Circle)
+    return norm(B.center + shift - A.center) - A.body->radius - B.body->radius;
+  const std::vector<Vec2> pa = A.boundary(points), pb = B.boundary(points);
+  real gap = std::numeric_limits<real>::infinity();
+  for (const Vec2 p : pa)
+    for (std::size_t i = 0; i < pb.size(); ++i)
+      gap = std::min(gap, segment_distance(p, pb[i] + shift, pb[(i + 1) % pb.size()] + shift));
+  return gap;
 }
 
 }  // namespace particula::case_detail

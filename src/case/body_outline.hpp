@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "particula/case/case.hpp"
+#include "particula/geometry/wall_piece.hpp"
 
 namespace particula::case_detail {
 
@@ -50,8 +51,8 @@ struct Outline {
   real cs = 1, sn = 0;      // cos and sin of the angle
   std::vector<Vec2> verts;  // polygon: rotated by the angle about the centroid
   std::vector<std::vector<Vec2>> holes;  // polygon: its holes, rotated likewise
-  real bound = 0;           // radius about `center` of a circle holding the body
-  Vec2 lo, hi;              // bounding box
+  real bound = 0;                        // radius about `center` of a circle holding the body
+  Vec2 lo, hi;                           // bounding box
 
   explicit Outline(const BodySpec& b);
   /// World point -> body frame (relative to `center`, unrotated).
@@ -63,5 +64,12 @@ struct Outline {
   /// About n points on the boundary (world coordinates; holes included), corners included.
   std::vector<Vec2> boundary(std::size_t n) const;
 };
+
+/// Gap between a body and a wall, <= 0 where they meet: exact for a circle, else the least
+/// distance of the boundary samples (at most half their spacing too large).
+real gap_to_wall(const Outline& o, const std::vector<Vec2>& samples, const WallPiece& w);
+/// Gap between the outlines A and B (B moved by `shift`): exact for two circles, otherwise the
+/// smallest distance of A's `points` boundary points to B's boundary polyline.
+real outline_gap(const Outline& A, const Outline& B, Vec2 shift, std::size_t points);
 
 }  // namespace particula::case_detail

@@ -68,11 +68,12 @@ void check_walls(const Case& c, const LoadContext& ctx) {
     const Vec2 t = w.to - w.from;
     if (norm(t) == 0) throw ctx.error(key + "to", "wall has zero length (to == from)");
     if (norm(t) < 0.5 * c.d0)
-      throw ctx.error(key + "to",
-                      fmt::format("wall '{}' is {:.3g} m long, shorter than d0/2 = {:.6g} m: its two end particles "
-                                  "would be that close (the time step shrinks with the closest pair); make it at "
-                                  "least d0/2 long or leave it out",
-                                  w.name, norm(t), 0.5 * c.d0));
+      throw ctx.error(
+          key + "to",
+          fmt::format("wall '{}' is {:.3g} m long, shorter than d0/2 = {:.6g} m: its two end particles "
+                      "would be that close (the time step shrinks with the closest pair); make it at "
+                      "least d0/2 long or leave it out",
+                      w.name, norm(t), 0.5 * c.d0));
     if (std::fabs(cross(w.velocity, t)) > 1e-9 * norm(w.velocity) * norm(t))
       throw ctx.error(key + "velocity",
                       fmt::format("wall velocity must be tangential (parallel to to - from = {}), "
@@ -299,19 +300,21 @@ void check_sliding_walls(const Case& c, const LoadContext& ctx) {
     if (!(along_x && c.periodic_x) && !(along_y && c.periodic_y))
       throw ctx.error(
           wall_key(k, "velocity"),
-          fmt::format("{} slides (velocity {}), but it does not run along a periodic axis of the domain: a sliding "
-                      "wall moves along itself, so its particles would run into the next wall or out of the domain "
-                      "after d0/|v| = {:.3g} s; sliding walls are for channels periodic along the wall "
-                      "(domain.periodic), e.g. Couette flow",
-                      wall_text(c, k), vec(w.velocity), c.d0 / norm(w.velocity)));
+          fmt::format(
+              "{} slides (velocity {}), but it does not run along a periodic axis of the domain: a sliding "
+              "wall moves along itself, so its particles would run into the next wall or out of the domain "
+              "after d0/|v| = {:.3g} s; sliding walls are for channels periodic along the wall "
+              "(domain.periodic), e.g. Couette flow",
+              wall_text(c, k), vec(w.velocity), c.d0 / norm(w.velocity)));
     for (const WallEnd& e : ends) {
       if (e.wall != k) continue;
       for (const WallEnd& o : ends)
         if (o.wall != k && end_gap(c, e, o) <= tol)
-          throw ctx.error(wall_key(k, "velocity"),
-                          fmt::format("{} slides (velocity {}) but {} where {} {}: the joint would come apart as "
-                                      "it slides; a sliding wall must not share an end point with another wall",
-                                      wall_text(c, k), vec(w.velocity), e.verb(), wall_text(c, o.wall), o.verb()));
+          throw ctx.error(
+              wall_key(k, "velocity"),
+              fmt::format("{} slides (velocity {}) but {} where {} {}: the joint would come apart as "
+                          "it slides; a sliding wall must not share an end point with another wall",
+                          wall_text(c, k), vec(w.velocity), e.verb(), wall_text(c, o.wall), o.verb()));
     }
   }
 }
@@ -363,16 +366,6 @@ bool stands_on(const Outline& o, const std::vector<Vec2>& samples, const WallPie
   });
 }
 
-/// Gap between a body and a wall, <= 0 where they meet: exact for a circle, else the least
-/// distance of the boundary samples (at most half their spacing too large).
-real gap_to_wall(const Outline& o, const std::vector<Vec2>& samples, const WallPiece& w) {
-  if (o.body->shape == BodyShape::Circle) return w.nearest(o.center).distance - o.body->radius;
-  if (o.contains(w.start(), 0)) return 0;  // the wall lies inside (it would come near the boundary if it left)
-  real gap = std::numeric_limits<real>::infinity();
-  for (const Vec2 p : samples) gap = std::min(gap, w.nearest(p).distance);
-  return gap;
-}
-
 /// Whether a wall runs through the inside of a body (deeper than tol), tested at points `step`
 /// apart.
 bool cuts_through(const Outline& o, const WallPiece& w, real step, real tol) {
@@ -401,7 +394,8 @@ real depth_inside(const Outline& o, Vec2 p, real reach) {
 /// junction corner): it must meet the wall at kMinCrossingAngle or more, or the fluid in the
 /// wedge between them is thinner than d0 over several d0 (a body barely crossing, or touching
 /// tangentially). The angle comes from how fast the wall goes into the body past the crossing.
-void check_crossing_angles(const Case& c, const LoadContext& ctx, std::size_t k, const Outline& o, std::size_t w) {
+void check_crossing_angles(const Case& c, const LoadContext& ctx, std::size_t k, const Outline& o,
+                           std::size_t w) {
   const WallPiece piece = c.walls[w].piece();
   std::size_t crossings = 0;
   const real step = 0.05 * c.d0, delta = 0.25 * c.d0;
@@ -418,21 +412,25 @@ void check_crossing_angles(const Case& c, const LoadContext& ctx, std::size_t k,
     was_inside = inside;
     ++crossings;
     const Vec2 x = piece.point_at(0.5 * (a + b));
-    const Vec2 into = (inside ? 1.0 : -1.0) * piece.tangent_at(0.5 * (a + b));  // along the wall into the body
+    const Vec2 into =
+        (inside ? 1.0 : -1.0) * piece.tangent_at(0.5 * (a + b));  // along the wall into the body
     const real sine = std::min(1.0, depth_inside(o, x + delta * into, delta) / delta);
     const real angle = std::asin(sine);
     if (angle >= kMinCrossingAngle * (1 - 1e-6)) continue;
-    throw ctx.error(place_key(c, k),
-                    fmt::format("{} meets {} at {:.3g} degrees at [{:.6g}, {:.6g}] at t = 0, less than {:.0f}: the fluid in the wedge "
-                                "between them would be thinner than d0 over several d0; sink the body deeper into "
-                                "the wall, or move it at least d0/2 clear of it",
-                                body_text(c.bodies[k]), wall_text(c, w), angle * 180 / M_PI, x.x, x.y,
-                                kMinCrossingAngle * 180 / M_PI));
+    throw ctx.error(
+        place_key(c, k),
+        fmt::format("{} meets {} at {:.3g} degrees at [{:.6g}, {:.6g}] at t = 0, less than {:.0f}: the fluid "
+                    "in the wedge "
+                    "between them would be thinner than d0 over several d0; sink the body deeper into "
+                    "the wall, or move it at least d0/2 clear of it",
+                    body_text(c.bodies[k]), wall_text(c, w), angle * 180 / M_PI, x.x, x.y,
+                    kMinCrossingAngle * 180 / M_PI));
   }
   if (crossings == 0)
-    throw ctx.error(place_key(c, k), fmt::format("{} lies inside {} at t = 0: a wall may cross a fixed body, not hide "
-                                                 "in it; leave the wall out or move it",
-                                                 wall_text(c, w), body_text(c.bodies[k])));
+    throw ctx.error(place_key(c, k),
+                    fmt::format("{} lies inside {} at t = 0: a wall may cross a fixed body, not hide "
+                                "in it; leave the wall out or move it",
+                                wall_text(c, w), body_text(c.bodies[k])));
 }
 
 /// A wall that crosses a body or passes within d0/2 of it at t = 0, also across periodic
@@ -480,19 +478,6 @@ void check_walls_clear_of_bodies(const Case& c, const LoadContext& ctx) {
   }
 }
 
-/// Gap between the outlines A and B (B moved by `shift`): exact for two circles, otherwise the
-/// smallest distance of A's boundary points to B's boundary polyline (0 when they overlap).
-real outline_gap(const Outline& A, const Outline& B, Vec2 shift, std::size_t points) {
-  if (A.body->shape == BodyShape::Circle && B.body->shape == BodyShape::Circle)
-    return norm(B.center + shift - A.center) - A.body->radius - B.body->radius;
-  const std::vector<Vec2> pa = A.boundary(points), pb = B.boundary(points);
-  real gap = std::numeric_limits<real>::infinity();
-  for (const Vec2 p : pa)
-    for (std::size_t i = 0; i < pb.size(); ++i)
-      gap = std::min(gap, segment_distance(p, pb[i] + shift, pb[(i + 1) % pb.size()] + shift));
-  return gap;
-}
-
 /// Gap between an outline and a wall segment: exact for a circle, otherwise from its boundary points.
 real wall_gap(const Outline& A, const WallSpec& w, std::size_t points) {
   const WallPiece piece = w.piece();
@@ -512,14 +497,16 @@ void check_initial_contacts(const Case& c, const LoadContext& ctx) {
   const real delta_c = c.contact_distance();
   const std::string model = paper ? "paper" : "spring_dashpot";
   const std::string source =
-      c.collision_range > 0 ? "collision.range"
-                            : fmt::format("{} d0, the default for collision.model \"{}\"", paper ? 3 : 0.5, model);
+      c.collision_range > 0
+          ? "collision.range"
+          : fmt::format("{} d0, the default for collision.model \"{}\"", paper ? 3 : 0.5, model);
   const auto fail = [&](std::size_t k, const std::string& other, real gap, real limit, const char* note) {
-    throw ctx.error(place_key(c, k),
-                    fmt::format("{} starts in contact with {}: its gap at t = 0 is {:.3g} m, below {:.3g} m{} (the "
-                                "contact distance delta_c = {:.3g} m: {}); move it away or set a smaller "
-                                "collision.range",
-                                body_text(c.bodies[k]), other, gap, limit, note, delta_c, source));
+    throw ctx.error(
+        place_key(c, k),
+        fmt::format("{} starts in contact with {}: its gap at t = 0 is {:.3g} m, below {:.3g} m{} (the "
+                    "contact distance delta_c = {:.3g} m: {}); move it away or set a smaller "
+                    "collision.range",
+                    body_text(c.bodies[k]), other, gap, limit, note, delta_c, source));
   };
   constexpr std::size_t kPoints = 2000;
   const real tol = 1e-6 * c.d0;  // a gap of exactly delta_c, up to round-off, is not yet a contact
@@ -543,7 +530,8 @@ void check_initial_contacts(const Case& c, const LoadContext& ctx) {
       for (const Vec2 shift : shifts) {
         if (norm(B.center + shift - A.center) >= A.bound + B.bound + delta_c) continue;
         const real gap = outline_gap(A, B, shift, kPoints);
-        if (gap < delta_c - tol) fail(k, fmt::format("{} (body[{}])", body_text(*B.body), j), gap, delta_c, "");
+        if (gap < delta_c - tol)
+          fail(k, fmt::format("{} (body[{}])", body_text(*B.body), j), gap, delta_c, "");
       }
     }
   }
@@ -553,17 +541,39 @@ using CrossCheck = void (*)(const Case&, const LoadContext&);
 
 /// Run in this order (later checks may rely on earlier ones, e.g. walls on a valid domain, the
 /// geometric body checks on valid polygons).
-constexpr CrossCheck kChecks[] = {check_domain,           check_magnitudes,     check_periodic_width, check_walls,
-                                  check_walls_off_periodic_edges, check_wall_orientation, check_wall_overlap,
-                                  check_wall_gaps, check_wall_joints, check_wall_chains, check_sliding_walls,
-                                  check_arc_overlap,      check_turning_walls,  check_region_closed, check_wall_regions,
+constexpr CrossCheck kChecks[] = {check_domain,
+                                  check_magnitudes,
+                                  check_periodic_width,
+                                  check_walls,
+                                  check_walls_off_periodic_edges,
+                                  check_wall_orientation,
+                                  check_wall_overlap,
+                                  check_wall_gaps,
+                                  check_wall_joints,
+                                  check_wall_chains,
+                                  check_sliding_walls,
+                                  check_arc_overlap,
+                                  check_turning_walls,
+                                  check_region_closed,
+                                  check_wall_regions,
                                   check_spin_up,
-                                  check_unused_keys,      check_open_boundaries, check_polygons,
-                                  check_density,          check_schedules,      check_fixed_bodies,
-                                  check_body_sizes,       check_bodies_in_domain, check_body_overlap,
-                                  check_walls_clear_of_bodies, check_initial_contacts, check_open_bodies,
-                                  check_probes,           check_references,
-                                  check_mach,             check_time_steps};
+                                  check_unused_keys,
+                                  check_open_boundaries,
+                                  check_polygons,
+                                  check_density,
+                                  check_schedules,
+                                  check_fixed_bodies,
+                                  check_body_sizes,
+                                  check_bodies_in_domain,
+                                  check_body_overlap,
+                                  check_walls_clear_of_bodies,
+                                  check_initial_contacts,
+                                  check_open_bodies,
+                                  check_probes,
+                                  check_references,
+                                  check_mach,
+                                  check_time_steps,
+                                  check_prescribed_paths};
 
 }  // namespace
 

@@ -104,6 +104,9 @@ void check_fixed_bodies(const Case& c, const LoadContext& ctx);
 void check_body_sizes(const Case& c, const LoadContext& ctx);
 void check_bodies_in_domain(const Case& c, const LoadContext& ctx);
 void check_body_overlap(const Case& c, const LoadContext& ctx);
+/// A prescribed body's path up to time.end stays d0/2 clear of the walls, inside the domain's
+/// closed edges and clear of fixed and prescribed bodies (path_checks.cpp).
+void check_prescribed_paths(const Case& c, const LoadContext& ctx);
 
 /// Checks of open boundaries (open_checks.cpp), run by run_cross_checks: check_open_boundaries
 /// after the walls (names unique among inlets and outlets, layers, each segment on a bounded

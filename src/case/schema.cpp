@@ -343,7 +343,9 @@ std::vector<KeySpec> make_schema() {
                member(B, &BodySpec::density)),
       choice_member("body[].motion", {"free", "fixed", "prescribed"}, def(std::string{"free"}),
                     "How the body moves: under the forces on it (free), not at all (fixed), or with a given "
-                    "velocity (prescribed).",
+                    "velocity (prescribed). No contact acts on a prescribed body: checked at load, its path up to "
+                    "time.end does not run into a wall, a domain edge or a fixed or prescribed body (it may come "
+                    "close; touching, to within 0.05 d0, is refused).",
                     B, &BodySpec::motion),
       vec2_key("body[].velocity", "m/s", def(zero),
                "Initial velocity of a free body, or the constant velocity of a prescribed body without a "

@@ -1,16 +1,16 @@
 #include "particula/validation/random_case.hpp"
 
-#include "particula/run/runner.hpp"
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fmt/format.h>
 #include <vector>
 
 #include "particula/core/types.hpp"
 #include "particula/io/atomic_file.hpp"
 #include "particula/io/error.hpp"
+#include "particula/run/runner.hpp"
 #include "particula/scene/scene.hpp"
 
 namespace particula {
@@ -23,7 +23,9 @@ class Draw {
   explicit Draw(std::uint64_t seed) : rng_(seed ^ 0x5EEDCA5Eull) {}
   double uniform(double a, double b) { return a + (b - a) * 0.5 * (rng_.symmetric() + 1); }
   double log_uniform(double a, double b) { return std::exp(uniform(std::log(a), std::log(b))); }
-  int integer(int a, int b) { return a + static_cast<int>(rng_.next() % static_cast<std::uint64_t>(b - a + 1)); }
+  int integer(int a, int b) {
+    return a + static_cast<int>(rng_.next() % static_cast<std::uint64_t>(b - a + 1));
+  }
   bool chance(double p) { return uniform(0, 1) < p; }
 
  private:
@@ -34,15 +36,15 @@ class Draw {
 /// prescribed excursion) for the placement test.
 struct DrawnBody {
   std::string shape, motion;
-  double width = 0;          // smallest dimension (the particles-across check)
-  double radius = 0;         // circle, half_disc
-  double a = 0, b = 0;       // ellipse semi-axes
+  double width = 0;     // smallest dimension (the particles-across check)
+  double radius = 0;    // circle, half_disc
+  double a = 0, b = 0;  // ellipse semi-axes
   double angle = 0;
-  std::vector<Vec2> unit;    // polygon: vertices about the origin, scaled to `width`
-  double bound = 0;          // radius of the circle about `center` that holds the body
+  std::vector<Vec2> unit;  // polygon: vertices about the origin, scaled to `width`
+  double bound = 0;  // radius of the circle about `center` that holds the body (at every angle it turns to)
   Vec2 center;
-  double density = 0;        // free bodies
-  Vec2 velocity;             // free: initial velocity
+  double density = 0;                           // free bodies
+  Vec2 velocity;                                // free: initial velocity
   double amplitude = 0, omega = 0, period = 0;  // prescribed: excursion (m), rotation, schedule period
 };
 
@@ -95,14 +97,22 @@ constexpr int kContainers = 8;
 
 const char* container_name(Container k) {
   switch (k) {
-    case Container::Box: return "closed box";
-    case Container::Channel: return "periodic channel between sliding walls";
-    case Container::LShape: return "L-shaped container";
-    case Container::TShape: return "T-shaped container";
-    case Container::Hopper: return "hopper";
-    case Container::Ngon: return "polygon container";
-    case Container::UShape: return "container with an arc bottom";
-    case Container::OpenChannel: return "channel from an inlet to an outlet";
+    case Container::Box:
+      return "closed box";
+    case Container::Channel:
+      return "periodic channel between sliding walls";
+    case Container::LShape:
+      return "L-shaped container";
+    case Container::TShape:
+      return "T-shaped container";
+    case Container::Hopper:
+      return "hopper";
+    case Container::Ngon:
+      return "polygon container";
+    case Container::UShape:
+      return "container with an arc bottom";
+    case Container::OpenChannel:
+      return "channel from an inlet to an outlet";
   }
   return "";
 }
@@ -130,6 +140,12 @@ void draw_motion(Draw& d, DrawnBody& b, double d0, double rho0) {
   } else {
     b.motion = "prescribed";
     b.amplitude = d0 * d.uniform(0.3, 1.0);
+    // it turns about its centroid, 4 R / (3 pi) from the disc's centre: the circle about the
+    // disc's centre that holds it at every angle reaches that far plus the centroid's farthest point
+    if (b.shape == "half_disc") {
+      const double xc = 4 * b.radius / (3 * M_PI);
+      b.bound = xc + std::hypot(b.radius, xc);
+    }
   }
 }
 
@@ -165,7 +181,8 @@ double wall_clearance(Vec2 p, const Setting& s) {
 bool fits(const DrawnBody& b, const std::vector<DrawnBody>& placed, const Setting& s, double clear) {
   const double r = b.bound + b.amplitude;
   if (wall_clearance(b.center, s) < r + clear) return false;
-  if (s.open() && (b.center.x < r + std::max(0.2 * s.W, 14 * s.d0) || b.center.x > std::min(0.7 * s.W, s.W - 14 * s.d0) - r))
+  if (s.open() && (b.center.x < r + std::max(0.2 * s.W, 14 * s.d0) ||
+                   b.center.x > std::min(0.7 * s.W, s.W - 14 * s.d0) - r))
     return false;
   for (const DrawnBody& o : placed) {
     double dx = std::fabs(b.center.x - o.center.x);
@@ -179,7 +196,8 @@ bool fits(const DrawnBody& b, const std::vector<DrawnBody>& placed, const Settin
 std::vector<Vec2> draw_outline(Draw& d, Setting& s) {
   const double W = s.W, H = s.H;
   switch (s.kind) {
-    case Container::Box: return {{0, 0}, {W, 0}, {W, H}, {0, H}};
+    case Container::Box:
+      return {{0, 0}, {W, 0}, {W, H}, {0, H}};
     case Container::LShape: {
       const double a = d.uniform(0.4, 0.6) * H, b = d.uniform(0.4, 0.6) * W;
       std::vector<Vec2> v{{0, 0}, {W, 0}, {W, a}, {b, a}, {b, H}, {0, H}};
@@ -221,7 +239,8 @@ std::vector<Vec2> draw_outline(Draw& d, Setting& s) {
       return v;
     }
     case Container::Channel:
-    case Container::OpenChannel: return {};
+    case Container::OpenChannel:
+      return {};
   }
   return {};
 }
@@ -302,16 +321,19 @@ std::string walls_toml(const Setting& s) {
   if (s.channel()) return wall_toml("bottom", p00, p10, s.v_bottom) + wall_toml("top", p11, p01, s.v_top);
   if (s.open())
     return wall_toml("bottom", p00, p10, 0) + wall_toml("top", p11, p01, 0) +
-           fmt::format("\n[[inlet]]\nname = \"in\"\nfrom = {}\nto = {}\nprofile = \"parabolic\"\nvelocity = {:.9g}\n"
-                       "ramp_time = {:.9g}\n",
-                       vec(p01), vec(p00), s.inflow, 0.1 * s.t_end) +
+           fmt::format(
+               "\n[[inlet]]\nname = \"in\"\nfrom = {}\nto = {}\nprofile = \"parabolic\"\nvelocity = {:.9g}\n"
+               "ramp_time = {:.9g}\n",
+               vec(p01), vec(p00), s.inflow, 0.1 * s.t_end) +
            fmt::format("\n[[outlet]]\nname = \"out\"\nfrom = {}\nto = {}\n", vec(p10), vec(p11));
   if (s.kind == Container::UShape) {
     const double R = s.arc_radius;
-    return fmt::format("\n[[wall]]\nname = \"bottom\"\nshape = \"arc\"\ncenter = {}\nradius = {:.9g}\n"
-                       "start_angle = {:.17g}\nend_angle = {:.17g}\n",
-                       vec({0.5 * s.W, R}), R, M_PI, 2 * M_PI) +
-           wall_toml("right", {s.W, R}, p11, 0) + wall_toml("top", p11, p01, 0) + wall_toml("left", p01, {0, R}, 0);
+    return fmt::format(
+               "\n[[wall]]\nname = \"bottom\"\nshape = \"arc\"\ncenter = {}\nradius = {:.9g}\n"
+               "start_angle = {:.17g}\nend_angle = {:.17g}\n",
+               vec({0.5 * s.W, R}), R, M_PI, 2 * M_PI) +
+           wall_toml("right", {s.W, R}, p11, 0) + wall_toml("top", p11, p01, 0) +
+           wall_toml("left", p01, {0, R}, 0);
   }
   std::string t;
   for (std::size_t k = 0; k < s.outline.size(); ++k)
@@ -327,7 +349,8 @@ bool place(Draw& d, DrawnBody& b, std::vector<DrawnBody>& placed, const Setting&
     b.center = {d.uniform(0, s.W), d.uniform(0, s.H)};
     const double clear = near_wall ? s.d0 * d.uniform(1, 3) : 2 * s.d0;
     if (!fits(b, placed, s, clear)) continue;
-    if (near_wall && attempt < 300 && wall_clearance(b.center, s) > b.bound + b.amplitude + 3 * s.d0) continue;
+    if (near_wall && attempt < 300 && wall_clearance(b.center, s) > b.bound + b.amplitude + 3 * s.d0)
+      continue;
     placed.push_back(b);
     return true;
   }
@@ -348,7 +371,8 @@ std::string random_case_toml(std::uint64_t seed) {
     draw_shape(d, bodies[k]);
   }
   // about 5000 particles at most: a box of 40-80 d0 a side
-  const double W = d0 * d.integer(40, 80), H = d0 * std::min(80, std::max(40, static_cast<int>(5000 / (W / d0))));
+  const double W = d0 * d.integer(40, 80),
+               H = d0 * std::min(80, std::max(40, static_cast<int>(5000 / (W / d0))));
   double drho = 0;
   for (DrawnBody& b : bodies) {
     draw_motion(d, b, d0, rho0);
@@ -358,27 +382,33 @@ std::string random_case_toml(std::uint64_t seed) {
   s.d0 = d0, s.W = W, s.H = H;
   s.outline = draw_outline(d, s);
   s.t_end = end_time(s, smallest);
-  if (s.channel() && d.chance(0.7)) s.force = 8 * s.nu * s.U / (H * H) * d.uniform(0.2, 1);  // Poiseuille peak <= U
+  if (s.channel() && d.chance(0.7))
+    s.force = 8 * s.nu * s.U / (H * H) * d.uniform(0.2, 1);  // Poiseuille peak <= U
   std::vector<DrawnBody> placed;
   for (DrawnBody& b : bodies) {
-    if (b.motion == "prescribed") b.omega = d.uniform(-1, 1) * 0.5 * s.U / b.bound;  // surface speed up to U/2
-    if (b.motion == "free" && d.chance(0.3)) b.velocity = {d.uniform(-0.5, 0.5) * s.U, d.uniform(-0.5, 0.5) * s.U};
+    if (b.motion == "prescribed")
+      b.omega = d.uniform(-1, 1) * 0.5 * s.U / b.bound;  // surface speed up to U/2
+    if (b.motion == "free" && d.chance(0.3))
+      b.velocity = {d.uniform(-0.5, 0.5) * s.U, d.uniform(-0.5, 0.5) * s.U};
     place(d, b, placed, s);
   }
   std::string t = fmt::format(
       "# Random case of seed {} (particula generate --seed {}): {} of {} drawn bodies placed, {}.\n"
-      "# Generated for robustness tests: default numerics and contact model; d0 = {:.4g} m, {:.3g} particles\n"
-      "# across the smallest body, velocity scale U = {:.3g} m/s, Re = U s / nu = {:.3g}, c d0 / nu = {:.3g}.\n",
+      "# Generated for robustness tests: default numerics and contact model; d0 = {:.4g} m, {:.3g} "
+      "particles\n"
+      "# across the smallest body, velocity scale U = {:.3g} m/s, Re = U s / nu = {:.3g}, c d0 / nu = "
+      "{:.3g}.\n",
       seed, seed, placed.size(), bodies.size(), container_name(s.kind), d0, smallest / d0, s.U,
       s.U * smallest / s.nu, s.c * d0 / s.nu);
-  t += fmt::format("name = \"random_{}\"\n\n[domain]\nmin = [0.0, 0.0]\nmax = {}\nperiodic = [{}, false]\n", seed,
-                   vec({W, H}), s.channel() ? "true" : "false");
+  t += fmt::format("name = \"random_{}\"\n\n[domain]\nmin = [0.0, 0.0]\nmax = {}\nperiodic = [{}, false]\n",
+                   seed, vec({W, H}), s.channel() ? "true" : "false");
   t += fmt::format("\n[resolution]\nd0 = {:.9g}\n", d0);
-  t += fmt::format("\n[fluid]\nrho0 = {:.1f}\nnu = {:.9g}\nc = {:.9g}\ngravity = [0.0, {:.9g}]\n", rho0, s.nu, s.c, s.g > 0 ? -s.g : 0.0);
+  t += fmt::format("\n[fluid]\nrho0 = {:.1f}\nnu = {:.9g}\nc = {:.9g}\ngravity = [0.0, {:.9g}]\n", rho0, s.nu,
+                   s.c, s.g > 0 ? -s.g : 0.0);
   if (s.force > 0) t += fmt::format("body_force = [{:.9g}, 0.0]\n", s.force);
   t += fmt::format("\n[initial]\nseed = {}\n", seed % 1000000);
-  t += fmt::format("\n[time]\nend = {:.9g}\n\n[output]\ninterval = {:.9g}\nsnapshot_interval = {:.9g}\n", s.t_end,
-                   s.t_end / 100, s.t_end / 20);
+  t += fmt::format("\n[time]\nend = {:.9g}\n\n[output]\ninterval = {:.9g}\nsnapshot_interval = {:.9g}\n",
+                   s.t_end, s.t_end / 100, s.t_end / 20);
   t += walls_toml(s);
   for (std::size_t k = 0; k < placed.size(); ++k) t += body_toml(placed[k], k, s);
   return t;
@@ -401,10 +431,11 @@ int generate_command(std::uint64_t seed, const std::filesystem::path& out) {
       }
     }
     if (first.rfind("# Random case of seed ", 0) != 0) {
-      std::fprintf(stderr,
-                   "error: --out '%s' already exists and is not a case particula generated: it is not replaced "
-                   "(choose another name)\n",
-                   out.string().c_str());
+      std::fprintf(
+          stderr,
+          "error: --out '%s' already exists and is not a case particula generated: it is not replaced "
+          "(choose another name)\n",
+          out.string().c_str());
       return 2;
     }
   }

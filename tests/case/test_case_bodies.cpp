@@ -74,7 +74,7 @@ TEST(CaseBodies, PrescribedWithoutScheduleAndNegativeStartTime) {
   EXPECT_TRUE(c.bodies[0].schedule.empty());
   EXPECT_NO_THROW(
       load(one_body("shape = \"circle\"\ncenter = [0.01, 0.03]\nradius = 0.002\n"
-                    "motion = \"prescribed\"\nschedule = [[-1, 0, 0, 0], [1e-9, 0.1, 0.1, 1]]\n")));
+                    "motion = \"prescribed\"\nschedule = [[-1, 0, 0, 0], [1e-9, 0.001, 0.001, 1]]\n")));
 }
 
 TEST(CaseBodies, HalfDiscMaySitOnAnyWallWithItsFlatSide) {
@@ -178,7 +178,7 @@ TEST(CaseBodyRoundTrip, AwkwardRealsAndLongLists) {
                           {0.014, 0.024}};
   a.bodies[2].schedule.clear();
   for (int i = 0; i < 7; ++i)
-    a.bodies[2].schedule.push_back({i / 3.0 - 0.0, {std::sqrt(2.0) * i / 100, -0.0}, 1.0 / (i + 1)});
+    a.bodies[2].schedule.push_back({i / 3.0 - 0.0, {std::sqrt(2.0) * i / 1e5, -0.0}, 1.0 / (i + 1)});
   a.bodies[1].angle = -0.0;
   a.bodies[0].center = {0.1 / 9, 1.0 / 97};
   const std::string text = resolved_case_toml(a);

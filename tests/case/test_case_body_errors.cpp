@@ -148,11 +148,12 @@ TEST(CaseBodyErrors, ZeroAreaPolygon) {
 }
 
 TEST(CaseBodyErrors, BodyNameAtMost64Characters) {
-  const std::string disc = one_body("name = \"d\"\nshape = \"circle\"\ncenter = [0.01, 0.03]\nradius = 0.002\n"
-                                    "density = 1000\n");
+  const std::string disc = one_body(
+      "name = \"d\"\nshape = \"circle\"\ncenter = [0.01, 0.03]\nradius = 0.002\n"
+      "density = 1000\n");
   EXPECT_NO_THROW(load(with(disc, "name = \"d\"", "name = \"" + std::string(64, 'd') + "\"")));
-  expect_error(with(disc, "name = \"d\"", "name = \"" + std::string(65, 'd') + "\""), "body[0].name", "name = \"ddd",
-               "(65 characters) is too long");
+  expect_error(with(disc, "name = \"d\"", "name = \"" + std::string(65, 'd') + "\""), "body[0].name",
+               "name = \"ddd", "(65 characters) is too long");
 }
 
 TEST(CaseBodyErrors, PolygonVerticesAtLeastHalfD0Apart) {
@@ -160,18 +161,21 @@ TEST(CaseBodyErrors, PolygonVerticesAtLeastHalfD0Apart) {
   const std::string close = one_body(
       "shape = \"polygon\"\nmotion = \"fixed\"\nvertices = [\n  [0.01, 0.01],\n  [0.012, 0.01],\n"
       "  [0.012, 0.012],\n  [0.01000001, 0.012],\n  [0.01, 0.012],\n]\n");
-  expect_error(close, "body[0].vertices", "[0.01, 0.012],",
-               "polygon vertices[3] [0.01000001, 0.012] and vertices[4] [0.01, 0.012] are 1e-08 m apart, closer "
-               "than d0/2 = 5e-05 m");
+  expect_error(
+      close, "body[0].vertices", "[0.01, 0.012],",
+      "polygon vertices[3] [0.01000001, 0.012] and vertices[4] [0.01, 0.012] are 1e-08 m apart, closer "
+      "than d0/2 = 5e-05 m");
   // Not neighbours along the outline: a notch whose two sides nearly meet.
-  expect_error(one_body("shape = \"polygon\"\nmotion = \"fixed\"\nvertices = [[0.01, 0.01], [0.014, 0.01], "
-                        "[0.014, 0.014], [0.01202, 0.014], [0.0121, 0.011], [0.0119, 0.011], [0.01198, 0.014], "
-                        "[0.01, 0.014]]\n"),
-               "body[0].vertices", "vertices",
-               "polygon vertices[3] [0.01202, 0.014] and vertices[6] [0.01198, 0.014] are 4e-05 m apart");
+  expect_error(
+      one_body("shape = \"polygon\"\nmotion = \"fixed\"\nvertices = [[0.01, 0.01], [0.014, 0.01], "
+               "[0.014, 0.014], [0.01202, 0.014], [0.0121, 0.011], [0.0119, 0.011], [0.01198, 0.014], "
+               "[0.01, 0.014]]\n"),
+      "body[0].vertices", "vertices",
+      "polygon vertices[3] [0.01202, 0.014] and vertices[6] [0.01198, 0.014] are 4e-05 m apart");
   // Just over d0/2 apart is fine.
-  EXPECT_NO_THROW(load(one_body("shape = \"polygon\"\nmotion = \"fixed\"\nvertices = [[0.01, 0.01], "
-                                "[0.012, 0.01], [0.012, 0.012], [0.01006, 0.012], [0.01, 0.012]]\n")));
+  EXPECT_NO_THROW(
+      load(one_body("shape = \"polygon\"\nmotion = \"fixed\"\nvertices = [[0.01, 0.01], "
+                    "[0.012, 0.01], [0.012, 0.012], [0.01006, 0.012], [0.01, 0.012]]\n")));
 }
 
 TEST(CaseBodyErrors, BodyOutsideTheDomain) {
@@ -191,11 +195,13 @@ TEST(CaseBodyErrors, BodyOutsideTheDomain) {
   // A fixed body may reach past an edge through a wall along it (the scene cuts it off there:
   // CaseWallErrors.OnlyAFixedBodyStandsOnAWall), a free one may not; wholly beyond the edge it
   // is refused.
-  expect_error(with(kCase, "center = [0, 0.04]", "center = [-0.001, 0.04]"), "body[3].center", "center = [-0.001",
+  expect_error(with(kCase, "center = [0, 0.04]", "center = [-0.001, 0.04]"), "body[3].center",
+               "center = [-0.001",
                "body 'obstacle' (half_disc) reaches past the domain edge x = 0 m, where no wall lies");
   expect_error(with(kCase, "center = [0.01, 0.01]", "center = [0.0195, 0.01]"), "body[0].center",
                "center = [0.0195", "(only a fixed body may reach past a domain edge)");
-  expect_error(with(kCase, "center = [0, 0.04]", "center = [-0.006, 0.04]"), "body[3].center", "center = [-0.006",
+  expect_error(with(kCase, "center = [0, 0.04]", "center = [-0.006, 0.04]"), "body[3].center",
+               "center = [-0.006",
                "body 'obstacle' (half_disc) lies wholly outside the domain: it spans x = -0.006 .. -0.001 m");
 }
 
@@ -264,19 +270,23 @@ TEST(CaseBodyErrors, FreeBodyStartsInContact) {
                "wall 'floor' (wall[0]) passes 3e-05 m from body 'body0' (circle)");
   EXPECT_NO_THROW(load(floor + disc("[0.01, 0.00106]")));
   // A fixed body is not a contact partner that starts moving.
-  EXPECT_NO_THROW(load(floor + "[collision]\nrange = 2e-4\n[[body]]\nshape = \"circle\"\ncenter = [0.01, 0.00106]\n"
-                               "radius = 0.001\nmotion = \"fixed\"\n"));
+  EXPECT_NO_THROW(load(floor +
+                       "[collision]\nrange = 2e-4\n[[body]]\nshape = \"circle\"\ncenter = [0.01, 0.00106]\n"
+                       "radius = 0.001\nmotion = \"fixed\"\n"));
   // Given collision.range.
   expect_error(floor + "[collision]\nrange = 2e-4\n" + disc("[0.01, 0.00115]"), "body[0].center",
                "center = [0.01, 0.00115]", "delta_c = 0.0002 m: collision.range)");
   // Sampled shapes: an ellipse's lowest point 1.2e-4 m above the floor, within a 2e-4 m range.
-  expect_error(floor + "[collision]\nrange = 2e-4\n[[body]]\nshape = \"ellipse\"\ncenter = [0.01, 0.00112]\n"
-                       "semi_axes = [0.002, 0.001]\ndensity = 1100\n",
+  expect_error(floor +
+                   "[collision]\nrange = 2e-4\n[[body]]\nshape = \"ellipse\"\ncenter = [0.01, 0.00112]\n"
+                   "semi_axes = [0.002, 0.001]\ndensity = 1100\n",
                "body[0].center", "center = [0.01, 0.00112]", "its gap at t = 0 is 0.00012 m");
   // Two free bodies 4e-5 m apart, and across a periodic boundary.
-  expect_error(kBase + disc("[0.005, 0.03]") + disc("[0.00704, 0.03]"), "body[0].center", "center = [0.005, 0.03]",
+  expect_error(kBase + disc("[0.005, 0.03]") + disc("[0.00704, 0.03]"), "body[0].center",
+               "center = [0.005, 0.03]",
                "starts in contact with body 'body1' (circle) (body[1]): its gap at t = 0 is 4e-05 m");
-  const std::string periodic = with(kBase, "max = [0.02, 0.06]", "max = [0.02, 0.06]\nperiodic = [true, false]");
+  const std::string periodic =
+      with(kBase, "max = [0.02, 0.06]", "max = [0.02, 0.06]\nperiodic = [true, false]");
   expect_error(periodic + disc("[0.00101, 0.03]") + disc("[0.01898, 0.03]"), "body[0].center",
                "center = [0.00101, 0.03]", "starts in contact with body 'body1'");
   // The paper's force meets a wall as the body's mirror image: half of its 3 d0 there; without a
@@ -370,8 +380,9 @@ namespace {
 
 /// A fixed 12 mm square (120 d0) with the holes given, one per line.
 std::string square_with_holes(const std::vector<std::string>& holes) {
-  std::string text = "shape = \"polygon\"\nmotion = \"fixed\"\n"
-                     "vertices = [[0.004, 0.02], [0.016, 0.02], [0.016, 0.032], [0.004, 0.032]]\nholes = [\n";
+  std::string text =
+      "shape = \"polygon\"\nmotion = \"fixed\"\n"
+      "vertices = [[0.004, 0.02], [0.016, 0.02], [0.016, 0.032], [0.004, 0.032]]\nholes = [\n";
   for (const std::string& h : holes) text += "  " + h + ",\n";
   return one_body(text + "]\n");
 }
@@ -380,8 +391,9 @@ std::string square_with_holes(const std::vector<std::string>& holes) {
 
 TEST(CaseBodyErrors, PolygonHolesInsideApartAndWideEnough) {
   const std::string middle = "[[0.007, 0.023], [0.013, 0.023], [0.013, 0.029], [0.007, 0.029]]";
-  const Case ok = load(square_with_holes({"[[0.0055, 0.0215], [0.0085, 0.0215], [0.0085, 0.0245], [0.0055, 0.0245]]",
-                                          "[[0.0145, 0.0305], [0.0145, 0.026], [0.010, 0.0305]]"}));
+  const Case ok =
+      load(square_with_holes({"[[0.0055, 0.0215], [0.0085, 0.0215], [0.0085, 0.0245], [0.0055, 0.0245]]",
+                              "[[0.0145, 0.0305], [0.0145, 0.026], [0.010, 0.0305]]"}));
   ASSERT_EQ(ok.bodies[0].holes.size(), 2u);
   EXPECT_EQ(ok.bodies[0].holes[1].size(), 3u);
 
@@ -395,13 +407,15 @@ TEST(CaseBodyErrors, PolygonHolesInsideApartAndWideEnough) {
   expect_error(square_with_holes({middle, overlapping}), "body[0].holes", overlapping,
                "polygon holes holes[0] and holes[1] overlap");
   const std::string near_edge = "[[0.0045, 0.023], [0.013, 0.023], [0.013, 0.029], [0.0045, 0.029]]";
-  expect_error(square_with_holes({near_edge}), "body[0].holes", near_edge,
-               "body 'body0' (polygon) is too thin for d0 = 0.0001 m: the solid between polygon hole holes[0] "
-               "and the outline (vertices) is 0.0005 m, only 5 particles across; it needs at least 10");
+  expect_error(
+      square_with_holes({near_edge}), "body[0].holes", near_edge,
+      "body 'body0' (polygon) is too thin for d0 = 0.0001 m: the solid between polygon hole holes[0] "
+      "and the outline (vertices) is 0.0005 m, only 5 particles across; it needs at least 10");
   const std::string tiny = "[[0.009, 0.025], [0.0095, 0.025], [0.0095, 0.0255], [0.009, 0.0255]]";
-  expect_error(square_with_holes({tiny}), "body[0].holes", tiny,
-               "polygon hole holes[0] of body 'body0' (polygon) is too small for d0 = 0.0001 m: it is 0.0005 m "
-               "across, only 5 particles; the fluid in it needs at least 10");
+  expect_error(
+      square_with_holes({tiny}), "body[0].holes", tiny,
+      "polygon hole holes[0] of body 'body0' (polygon) is too small for d0 = 0.0001 m: it is 0.0005 m "
+      "across, only 5 particles; the fluid in it needs at least 10");
   const std::string bow_tie = "[[0.007, 0.023], [0.013, 0.029], [0.013, 0.023], [0.007, 0.029]]";
   expect_error(square_with_holes({bow_tie}), "body[0].holes", bow_tie,
                "polygon hole holes[0] intersects itself: edge holes[0][0] -> holes[0][1]");
@@ -411,4 +425,32 @@ TEST(CaseBodyErrors, PolygonHolesInsideApartAndWideEnough) {
   expect_error(one_body("shape = \"circle\"\ncenter = [0.01, 0.03]\nradius = 0.003\ndensity = 2000\n"
                         "holes = [[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]]\n"),
                "body[0].holes", "holes", "not used by shape 'circle' (only by shape polygon)");
+}
+
+TEST(CaseBodyErrors, PrescribedPathStopsShortOfWallsAndBodies) {
+  // a disc driven down onto the floor: 0.00875 m of gap at the start, a path of 0.00874 m stops
+  // 0.1 d0 short (loads), one of 0.0088 m runs 0.5 d0 into it
+  const std::string free_disc = "density = 1250\nvelocity = [0.001, -0.002]\nomega = 0.5";
+  const std::string towed = with(kCase, free_disc, "motion = \"prescribed\"\nvelocity = [0, -0.00874]");
+  EXPECT_NO_THROW(load_case_text(towed, kFile, {}));
+  expect_error(with(towed, "-0.00874", "-0.0088"), "body[0].velocity", "velocity = [0, -0.0088]",
+               "body 'disc' (circle), moving as prescribed, runs into");
+  // the paddle's schedule taken into the fixed half disc at the left edge
+  const std::string rows = "schedule = [\n  [0, 0, 0, 0],\n  [0.5, 0.001, 0, 2],\n  [1.5, 0, -0.001, 0],\n]";
+  const std::string into =
+      with(kCase, rows, "schedule = [\n  [0, -0.012, 0.016, 0],\n  [1, -0.012, 0.016, 0],\n]");
+  expect_error(into, "body[2].schedule", "schedule = [",
+               "body 'paddle' (polygon), moving as prescribed, runs into body 'obstacle' (half_disc) "
+               "(body[3]) at t = ");
+}
+
+TEST(CaseBodyErrors, PrescribedTurnSweepsTheWholeBody) {
+  // a half disc turns about its centroid, 0.849 mm from the disc's centre for R = 2 mm: its
+  // flat side's ends, 2.173 mm from the centroid, sweep 1.324 mm past where the flat side starts
+  const auto turner = [](const std::string& x) {
+    return kBase + "\n[[body]]\nname = \"turner\"\nshape = \"half_disc\"\ncenter = [" + x +
+           ", 0.03]\nradius = 0.002\nmotion = \"prescribed\"\nomega = 4.0\n";
+  };
+  EXPECT_NO_THROW(load_case_text(turner("0.0014"), kFile, {}));
+  expect_error(turner("0.0012"), "body[0].velocity", "[[body]]", "runs into the domain edge x = 0 m at t = ");
 }
