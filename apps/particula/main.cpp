@@ -200,7 +200,7 @@ struct GenerateArgs {
 
 CLI::App* add_generate(CLI::App& app, GenerateArgs& a) {
   auto* generate = app.add_subcommand(
-      "generate", "Write a random valid case file from a seed (bodies, box or channel, forces; for robustness tests)");
+      "generate", "Write a random valid case file from a seed (bodies of every shape and motion in one of eight kinds of container; for robustness tests)");
   generate->add_option("--seed", a.seed, "Seed of the random case (the same seed gives the same file)")->required();
   generate->add_option("--out", a.out, "Case file to write (default: standard output)");
   generate->footer(footer("  particula generate --seed 7 --out seed7.toml && particula run seed7.toml"));
