@@ -16,6 +16,7 @@
 #include "body_outline.hpp"
 #include "internal.hpp"
 #include "particula/bodies/rigid_motion.hpp"
+#include "particula/geometry/shape.hpp"
 
 namespace particula::case_detail {
 namespace {
@@ -32,14 +33,15 @@ real path_speed(const BodySpec& b, real bound) {
   return s;
 }
 
-/// The point the body turns about: its area centroid (a half_disc's lies 4R / (3 pi) from the
-/// disc's centre towards the round side).
+/// The point the body turns about: its area centroid (a half_disc's lies on its axis of symmetry,
+/// Shape::half_disc's centroid offset from the disc's centre, as the scene places it).
 Vec2 turning_point(const BodySpec& b) {
   switch (b.shape) {
     case BodyShape::Polygon:
       return centroid(b.vertices, b.holes);
     case BodyShape::HalfDisc:
-      return b.center + (4 * b.radius / (3 * M_PI)) * Vec2{std::cos(b.angle), std::sin(b.angle)};
+      return b.center +
+             rotate(Shape::half_disc(b.radius).centroid_offset(), std::cos(b.angle), std::sin(b.angle));
     default:
       return b.center;
   }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "particula/core/types.hpp"
+#include "particula/geometry/shape.hpp"
 #include "particula/io/atomic_file.hpp"
 #include "particula/io/error.hpp"
 #include "particula/run/runner.hpp"
@@ -140,10 +141,10 @@ void draw_motion(Draw& d, DrawnBody& b, double d0, double rho0) {
   } else {
     b.motion = "prescribed";
     b.amplitude = d0 * d.uniform(0.3, 1.0);
-    // it turns about its centroid, 4 R / (3 pi) from the disc's centre: the circle about the
-    // disc's centre that holds it at every angle reaches that far plus the centroid's farthest point
+    // it turns about its centroid, xc from the disc's centre: the circle about the disc's centre
+    // that holds it at every angle reaches xc plus the centroid's farthest point (a flat side's end)
     if (b.shape == "half_disc") {
-      const double xc = 4 * b.radius / (3 * M_PI);
+      const double xc = norm(Shape::half_disc(b.radius).centroid_offset());
       b.bound = xc + std::hypot(b.radius, xc);
     }
   }
