@@ -31,8 +31,11 @@ void find_covers(BodyParams& bp, Vec2 pos, real angle, const std::vector<WallPie
   for (std::size_t k = 0; k < walls.size(); ++k) {
     const WallPiece& w = walls[k];
     if (w.nearest(pos).distance > bp.shape.bounding_radius() + eps) continue;
-    const auto covered = [&](real s) { return bp.shape.signed_distance(rotate(w.point_at(s) - pos, cs, -sn)) <= eps; };
-    for (const auto& [s0, s1] : scene_detail::wall_stretches(w, covered, d0)) bp.covers.push_back({k, s0, s1});
+    const auto covered = [&](real s) {
+      return bp.shape.signed_distance(rotate(w.point_at(s) - pos, cs, -sn)) <= eps;
+    };
+    for (const auto& [s0, s1] : scene_detail::wall_stretches(w, covered, d0))
+      bp.covers.push_back({k, s0, s1});
   }
   bp.area_in = bp.shape.area();
   bp.centroid_in = pos;
@@ -125,7 +128,8 @@ PhysicsParams physics_params(const Case& c) {
     bp.samples = bp.shape.sample_surface(c.d0);
     bp.area_in = bp.shape.area();
     bp.centroid_in = body_position(b, bp.shape);
-    if (b.motion == BodyMotion::Fixed) find_covers(bp, body_position(b, bp.shape), b.angle, p.walls, dom, c.d0);
+    if (b.motion == BodyMotion::Fixed)
+      find_covers(bp, body_position(b, bp.shape), b.angle, p.walls, dom, c.d0);
     p.bodies.push_back(std::move(bp));
   }
   return p;
@@ -133,19 +137,26 @@ PhysicsParams physics_params(const Case& c) {
 
 Shape body_shape(const BodySpec& b) {
   switch (b.shape) {
-    case BodyShape::Circle: return Shape::circle(b.radius);
-    case BodyShape::Ellipse: return Shape::ellipse(b.semi_axes.x, b.semi_axes.y);
-    case BodyShape::Polygon: return Shape::polygon(b.vertices, b.holes);
-    case BodyShape::HalfDisc: return Shape::half_disc(b.radius);
+    case BodyShape::Circle:
+      return Shape::circle(b.radius);
+    case BodyShape::Ellipse:
+      return Shape::ellipse(b.semi_axes.x, b.semi_axes.y);
+    case BodyShape::Polygon:
+      return Shape::polygon(b.vertices, b.holes);
+    case BodyShape::HalfDisc:
+      return Shape::half_disc(b.radius);
   }
   return Shape::circle(b.radius);
 }
 
 Vec2 body_position(const BodySpec& b, const Shape& s) {
   switch (b.shape) {
-    case BodyShape::Polygon: return s.centroid_offset();
-    case BodyShape::HalfDisc: return b.center + rotate(s.centroid_offset(), std::cos(b.angle), std::sin(b.angle));
-    default: return b.center;
+    case BodyShape::Polygon:
+      return s.centroid_offset();
+    case BodyShape::HalfDisc:
+      return b.center + rotate(s.centroid_offset(), std::cos(b.angle), std::sin(b.angle));
+    default:
+      return b.center;
   }
 }
 
@@ -220,8 +231,8 @@ real cell_fluid_fraction(Vec2 x, real dx, real dy, const Gap& gap) {
 
 /// The kept lattice points nearest to lattice point (ix, iy) within two cells (all of those at
 /// the smallest distance; across periodic sides); empty when there is none.
-std::vector<std::int64_t> nearest_kept(const std::vector<std::int64_t>& kept, int nx, int ny, const Domain& dom, int ix,
-                                       int iy) {
+std::vector<std::int64_t> nearest_kept(const std::vector<std::int64_t>& kept, int nx, int ny,
+                                       const Domain& dom, int ix, int iy) {
   std::vector<std::int64_t> best;
   int best_d2 = 1 << 30;
   for (int dy = -2; dy <= 2; ++dy)
@@ -270,6 +281,7 @@ FluidFill fill_fluid(const Case& c, Scene& sc, const BodyDistance& body_distance
   std::vector<BandCell> band;  // lattice points removed near a body whose cell holds fluid
   const bool exact_fill = c.force == ForceModel::Momentum && (!c.bodies.empty() || !c.walls.empty());
   // Signed distance to the solids (negative inside a body or outside the region the walls enclose).
+  const real diagonal = std::sqrt(sc.dx * sc.dx + sc.dy * sc.dy);
   auto solid_gap = [&](Vec2 x) {
     real g = body_distance(x);
     return std::min(g, signed_wall_distance(sc.params.walls, dom, x));
@@ -279,8 +291,15 @@ FluidFill fill_fluid(const Case& c, Scene& sc, const BodyDistance& body_distance
       const Vec2 x{dom.lo.x + (ix + 0.5) * sc.dx, dom.lo.y + (iy + 0.5) * sc.dy};
       // Fluid fills the region on the left of the walls, and not within d0/2 of a solid surface
       // (a lattice point exactly d0/2 from a wall lying on the box edge stays).
-      const bool keep = signed_wall_distance(sc.params.walls, dom, x) >= 0.5 * d0 * (1 - 1e-9);
-      const real fraction = exact_fill ? cell_fluid_fraction(x, sc.dx, sc.dy, solid_gap) : real(1);
+      const real wall_gap = signed_wall_distance(sc.params.walls, dom, x);
+      const bool keep = wall_gap >= 0.5 * d0 * (1 - 1e-9);
+      // A cell whose centre lies farther from the walls than its half-diagonal has every sample
+      // on the walls' fluid side (a distance changes no faster than the point moves), so the
+      // bodies alone decide its samples: the same fraction without the walls' distance at each of
+      // them (with 10 000 bodies, most of the set-up time went there).
+      const real fraction = !exact_fill                  ? real(1)
+                            : wall_gap >= 0.5 * diagonal ? cell_fluid_fraction(x, sc.dx, sc.dy, body_distance)
+                                                         : cell_fluid_fraction(x, sc.dx, sc.dy, solid_gap);
       if (!keep || near_body(body_distance, x, d0)) {
         if (exact_fill && fraction > 0) band.push_back({ix, iy, fraction});
         continue;
@@ -310,7 +329,8 @@ FluidFill fill_fluid(const Case& c, Scene& sc, const BodyDistance& body_distance
 
 /// The fluid particles' fields at t = 0 (particles nb on): the hydrostatic pressure, the
 /// case's initial flow, the density from the pressure and the mass from the area.
-void set_initial_fluid(const Case& c, const Domain& dom, const FluidFill& fill, std::size_t nb, Particles& P) {
+void set_initial_fluid(const Case& c, const Domain& dom, const FluidFill& fill, std::size_t nb,
+                       Particles& P) {
   const Vec2 L = dom.size();
   const real d0 = c.d0;
   // Hydrostatic start: P = rho0 g.(x - x_top), x_top the domain corner highest against g.
@@ -391,7 +411,8 @@ Scene build_scene(const Case& c) {
     const std::size_t first_surface = b.size();
     for (const auto& sp : surf) {
       b.add(sp.x, sp.x - g.pos0, sp.normal, sp.ds,
-            sp.ds * d0 * (sp.corner ? corner_volume_factor(sp.wall_normal, sp.corner_normal2, sp.wedge > 0) : 1.0),
+            sp.ds * d0 *
+                (sp.corner ? corner_volume_factor(sp.wall_normal, sp.corner_normal2, sp.wedge > 0) : 1.0),
             Kind::Boundary, -1, static_cast<std::int32_t>(w), sp.wedge);
     }
     if (c.boundary == BoundaryModel::Dummy) {
