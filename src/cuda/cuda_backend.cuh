@@ -93,11 +93,17 @@ class CudaBackend final : public Backend {
   // surfaces, body loads and open-boundary buffers (cuda_bodies.cu)
   void group_loads(const std::vector<RigidGroup>& groups, real mu, std::vector<GroupLoads>& out) override;
   void set_buffer_particles(const std::vector<std::uint32_t>& index, const Particles& P) override;
-  void set_load_band(const std::vector<BandEntry>& band) override { band_.upload(band); }
+  void set_load_band(const std::vector<BandEntry>& band) override {
+    band_.upload(band);
+    band_host_ = band;  // the slots the host sums the downloaded entries into
+  }
   void band_levels(const LoadArrays& scalars, std::vector<Vec2>& num_den) override;
   void band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
                   const std::vector<real>& group_level, std::vector<Vec2>& fp, std::vector<Vec2>& fv,
                   std::vector<Vec2>& torque, std::vector<Vec2>& fd) override;
+  void band_load_sums(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
+                      const std::vector<real>& group_level, const std::vector<std::uint8_t>& circle,
+                      const std::vector<std::size_t>& block_first, std::vector<BandLoadSum>& partial) override;
   void surface_motion(const std::vector<GroupMotion>& motions, bool place) override;
 
   // (public: nvcc's extended device lambdas may not live in private member functions)
@@ -148,6 +154,8 @@ class CudaBackend final : public Backend {
   DArray<GroupLoads> loads_;
   // band momentum loads (numerics.force = momentum): the step's entries, per-entry loads
   DArray<BandEntry> band_;
+  std::vector<BandEntry> band_host_;
+  std::vector<Vec2> entry_fp_, entry_fv_, entry_torque_, entry_fd_;  // downloaded per-entry loads
   DArray<Vec2> group_pos_, band_fp_, band_fv_, band_fd_;
   DArray<Vec2> band_torque_;
   DArray<real> group_level_;

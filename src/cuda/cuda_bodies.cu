@@ -138,6 +138,13 @@ void CudaBackend::band_loads(const LoadArrays& scalars, const std::vector<Vec2>&
   band_fd_.download(fd);
 }
 
+void CudaBackend::band_load_sums(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
+                                 const std::vector<real>& group_level, const std::vector<std::uint8_t>& circle,
+                                 const std::vector<std::size_t>& block_first, std::vector<BandLoadSum>& partial) {
+  band_loads(scalars, group_pos, group_level, entry_fp_, entry_fv_, entry_torque_, entry_fd_);
+  sum_band_entry_loads(band_host_, block_first, circle, entry_fp_, entry_fv_, entry_torque_, entry_fd_, partial);
+}
+
 void CudaBackend::set_buffer_particles(const std::vector<std::uint32_t>& index, const Particles& P) {
   buffer_host_.resize(index.size());
   for (std::size_t k = 0; k < index.size(); ++k) {

@@ -92,7 +92,9 @@ void CpuBackend::geometry_sweep(SolverCounters& cnt) {
 #pragma omp parallel for schedule(static) reduction(+ : bad_B, bad_Bhat, bad_normal, lone, sparse)
   for (std::size_t i = 0; i < n; ++i) {
     const GeometryAt g = geometry_at(c, i, prm_.d0, grad_w, lap_w);
-    isolated_out[i] = i >= nb && P_.kind[i] == Kind::Fluid && isolated(g.others_fluid_support, one_neighbour, g.near.a) ? 1 : 0;
+    isolated_out[i] =
+        i >= nb && P_.kind[i] == Kind::Fluid && isolated(g.others_fluid_support, one_neighbour, g.near.a) ? 1
+                                                                                                          : 0;
     lone += isolated_out[i];
     B_[i] = g.B;
     Bhat_[i] = g.Bhat;
@@ -106,7 +108,8 @@ void CpuBackend::geometry_sweep(SolverCounters& cnt) {
     bad_Bhat += g.Bhat_ok ? 0 : 1;
     sparse += g.sparse ? 1 : 0;
     // P.18 normal; on failure the analytic normal set by the surfaces' placement stays.
-    if (i < nb && kernel_normals && P_.kind[i] == Kind::Boundary && !kernel_normal(g.normal_sum, P_.normal[i]))
+    if (i < nb && kernel_normals && P_.kind[i] == Kind::Boundary &&
+        !kernel_normal(g.normal_sum, P_.normal[i]))
       ++bad_normal;
   }
   cnt.singular_B += bad_B;
@@ -271,8 +274,8 @@ real CpuBackend::end_of_step(real dt, bool single_layer) {
   real vmax2 = 0;
 #pragma omp parallel for schedule(static) reduction(max : vmax2)
   for (std::size_t i = 0; i < n; ++i)
-    vmax2 = std::max(vmax2, end_of_step_update(i, nb, P_.kind[i], domain_, dt, single_layer, v_n_[i], rho_n_[i],
-                                               p_n_[i], P_.x[i], P_.v[i], P_.rho[i], P_.p[i]));
+    vmax2 = std::max(vmax2, end_of_step_update(i, nb, P_.kind[i], domain_, dt, single_layer, v_n_[i],
+                                               rho_n_[i], p_n_[i], P_.x[i], P_.v[i], P_.rho[i], P_.p[i]));
   return vmax2;
 }
 
@@ -289,8 +292,9 @@ void CpuBackend::shift(real scale, real c) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = nb; i < n; ++i)
     if (P_.kind[i] == Kind::Fluid)
-      shift_particle(shift_dir_[i], scale, gradV_[i], G_[i], gather_surfaces(near_a_[i], near_b_[i], surfaces),
-                     prm_.d0, domain_, c, P_.x[i], P_.v[i], P_.p[i], P_.rho[i]);
+      shift_particle(shift_dir_[i], scale, gradV_[i], G_[i],
+                     gather_surfaces(near_a_[i], near_b_[i], surfaces), prm_.d0, domain_, c, P_.x[i], P_.v[i],
+                     P_.p[i], P_.rho[i]);
 }
 
 SurfaceArrays CpuBackend::surface_arrays() const {
@@ -315,8 +319,8 @@ void CpuBackend::guard_surfaces(real keep, SolverCounters& cnt) {
 #pragma omp parallel for schedule(static) reduction(+ : pushed, gap)
   for (std::size_t i = nb; i < n; ++i) {
     if (P_.kind[i] != Kind::Fluid) continue;
-    const GuardOutcome o =
-        surface_guard_at(i, near_a_.data(), near_b_.data(), surfaces, P_.x.data(), P_.v.data(), keep, domain_);
+    const GuardOutcome o = surface_guard_at(i, near_a_.data(), near_b_.data(), surfaces, P_.x.data(),
+                                            P_.v.data(), keep, domain_);
     pushed += o == GuardOutcome::Pushed ? 1 : 0;
     gap += o == GuardOutcome::Gap ? 1 : 0;
   }
@@ -328,7 +332,8 @@ void CpuBackend::reorder_fluid() {
   const std::size_t n = P_.size(), nb = P_.n_boundary;
   if (n == nb) return;
   reorder_key_.resize(n - nb);
-  for (std::size_t i = nb; i < n; ++i) reorder_key_[i - nb] = static_cast<std::uint32_t>(grid_.cell_index(P_.x[i]));
+  for (std::size_t i = nb; i < n; ++i)
+    reorder_key_[i - nb] = static_cast<std::uint32_t>(grid_.cell_index(P_.x[i]));
   reorder_order_.resize(n - nb);
   std::iota(reorder_order_.begin(), reorder_order_.end(), std::size_t{0});
   std::stable_sort(reorder_order_.begin(), reorder_order_.end(),
@@ -463,8 +468,8 @@ void CpuBackend::band_levels(const LoadArrays& scalars, std::vector<Vec2>& num_d
 }
 
 void CpuBackend::band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
-                            const std::vector<real>& group_level, std::vector<Vec2>& fp, std::vector<Vec2>& fv,
-                            std::vector<Vec2>& torque, std::vector<Vec2>& fd) {
+                            const std::vector<real>& group_level, std::vector<Vec2>& fp,
+                            std::vector<Vec2>& fv, std::vector<Vec2>& torque, std::vector<Vec2>& fd) {
   LoadArrays a = band_arrays(scalars);
   a.group_pos = group_pos.data();
   a.group_level = group_level.data();
@@ -476,6 +481,25 @@ void CpuBackend::band_loads(const LoadArrays& scalars, const std::vector<Vec2>& 
   each_band_sample(a, band_, [&](std::size_t e, const BandSample& s) {
     band_entry_share(a, s, band_[e], fp[e], fv[e], torque[e]);
     fd[e] = band_share_damping(s, band_[e].phi);
+  });
+}
+
+void CpuBackend::band_load_sums(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
+                                const std::vector<real>& group_level, const std::vector<std::uint8_t>& circle,
+                                const std::vector<std::size_t>& block_first,
+                                std::vector<BandLoadSum>& partial) {
+  LoadArrays a = band_arrays(scalars);
+  a.group_pos = group_pos.data();
+  a.group_level = group_level.data();
+  partial.assign(block_first.empty() ? 0 : block_first.back(), BandLoadSum{});
+  // each block's entries run on one thread in band order, the order sum_band_entry_loads adds in
+  each_band_sample(a, band_, [&](std::size_t e, const BandSample& s) {
+    const BandEntry& be = band_[e];
+    Vec2 fp, fv, torque;
+    band_entry_share(a, s, be, fp, fv, torque);
+    add_band_entry_load(partial[block_first[e / kBandBlock] + be.slot], fp, fv, torque,
+                        band_share_damping(s, be.phi),
+                        circle[static_cast<std::size_t>(be.group)] && be.in_film);
   });
 }
 

@@ -2,11 +2,11 @@
 // a kept band is rebuilt: load_band_motion.cpp).
 #include "particula/solver/load_band.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <omp.h>
 
 #include "particula/solver/backend.hpp"
 
@@ -129,8 +129,8 @@ real LoadBand::cell_area(const BandScene& s, std::size_t i, const std::vector<Ve
   return closed_by_fluid ? voronoi_cell_area(d, count, s.prm.h) : 0;
 }
 
-void LoadBand::build_entries(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs, std::size_t f0,
-                             std::size_t f1, std::vector<BandEntry>& part) {
+void LoadBand::build_entries(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs,
+                             std::size_t f0, std::size_t f1, std::vector<BandEntry>& part) {
   constexpr int kMaxNear = 16;
   const real reach = kLoadBandReach * s.prm.h;
   const real film = kFilmGap * s.prm.h;
@@ -158,7 +158,8 @@ void LoadBand::build_entries(const BandScene& s, const std::vector<Vec2>& x, con
     if (kept_limit > 0) {
       anchor_[nb + f] = near[closest].group;
       if (count > 1)
-        limit2_[nb + f] = band_moved_limit2(facing_gap(near, count, closest), kept_limit, kBandGapFloor * s.prm.d0);
+        limit2_[nb + f] =
+            band_moved_limit2(facing_gap(near, count, closest), kept_limit, kBandGapFloor * s.prm.d0);
     }
     for (int k = 0; k < count; ++k) {
       BandEntry e;
@@ -172,7 +173,8 @@ void LoadBand::build_entries(const BandScene& s, const std::vector<Vec2>& x, con
   }
 }
 
-void LoadBand::build(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs, Backend& backend) {
+void LoadBand::build(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs,
+                     Backend& backend) {
   ++builds_;
   const std::size_t nb = s.particles.n_boundary, nf = x.size() - nb;
   bin_bodies(s, kLoadBandReach * s.prm.h);
@@ -188,7 +190,7 @@ void LoadBand::build(const BandScene& s, const std::vector<Vec2>& x, const HostN
   const std::size_t threads = static_cast<std::size_t>(omp_get_max_threads());
   parts_.resize(threads);
   part_first_.assign(threads + 1, 0);
-#pragma omp parallel num_threads(static_cast<int>(threads))
+#pragma omp parallel num_threads(static_cast <int>(threads))
   {
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()),
                       nt = static_cast<std::size_t>(omp_get_num_threads());
@@ -237,7 +239,8 @@ void LoadBand::assign_slots(std::size_t groups) {
 }
 
 template <class T, class BlockSum>
-void LoadBand::sum(std::size_t groups, std::vector<T>& partial, std::vector<T>& total, BlockSum block_sum) const {
+void LoadBand::sum(std::size_t groups, std::vector<T>& partial, std::vector<T>& total,
+                   BlockSum block_sum) const {
   // Each block's sum per group (slots), in parallel, then the blocks' sums added per group in
   // block order: one fixed order of additions whatever the thread count.
   const std::size_t ne = band_.size(), nblocks = block_first_.size() - 1;
@@ -245,8 +248,14 @@ void LoadBand::sum(std::size_t groups, std::vector<T>& partial, std::vector<T>& 
 #pragma omp parallel for schedule(static)
   for (std::size_t b = 0; b < nblocks; ++b)
     block_sum(b * kBandBlock, std::min(ne, (b + 1) * kBandBlock), partial.data() + block_first_[b]);
+  add_up(groups, partial, total);
+}
+
+template <class T>
+void LoadBand::add_up(std::size_t groups, const std::vector<T>& partial, std::vector<T>& total) const {
   total.assign(groups, T{});
-  for (std::size_t q = 0; q < partial.size(); ++q) total[static_cast<std::size_t>(slot_group_[q])] += partial[q];
+  for (std::size_t q = 0; q < partial.size(); ++q)
+    total[static_cast<std::size_t>(slot_group_[q])] += partial[q];
 }
 
 LoadArrays LoadBand::load_arrays(const BandScene& s) const {
@@ -306,29 +315,15 @@ void LoadBand::sum_levels(const BandScene& s, const LoadArrays& a, Backend& back
 }
 
 void LoadBand::sum_loads(const BandScene& s, const LoadArrays& a, Backend& backend) {
-  // A circle takes no torque from pressure about its centre (P r x n = 0 on its surface), and the
-  // band's pressure torque, exact in the continuum and resolved elsewhere, is not in a film
-  // between the circle and another surface thinner than about two spacings: P grad(phi) there is
-  // normal to the film, not to the circle, and nothing in the unresolved film cancels its moment
-  // (docs/method.md, "Forces on solids"). So a circle takes only the viscous part of the torque
-  // of its entries in such a film.
+  // The circles: their pressure torque in a film is left out (add_band_entry_load).
   const std::size_t ng = s.groups.size();
   group_circle_.resize(ng);
   for (std::size_t k = 0; k < ng; ++k)
-    group_circle_[k] = !s.groups[k].is_wall &&
-                       s.prm.bodies[static_cast<std::size_t>(s.groups[k].body)].shape.kind() == ShapeKind::Circle;
-  backend.band_loads(a, group_pos_, group_level_, entry_fp_, entry_fv_, entry_torque_, entry_fd_);
-  sum(ng, load_partial_, load_total_, [&](std::size_t e0, std::size_t e1, LoadSum* sums) {
-    for (std::size_t e = e0; e < e1; ++e) {
-      const BandEntry& be = band_[e];
-      const Vec2 et = entry_torque_[e];
-      LoadSum& total = sums[be.slot];
-      total.fp += entry_fp_[e];
-      total.fv += entry_fv_[e];
-      total.fd += entry_fd_[e];
-      total.torque += group_circle_[static_cast<std::size_t>(be.group)] && be.in_film ? et.y : et.x + et.y;
-    }
-  });
+    group_circle_[k] =
+        !s.groups[k].is_wall &&
+        s.prm.bodies[static_cast<std::size_t>(s.groups[k].body)].shape.kind() == ShapeKind::Circle;
+  backend.band_load_sums(a, group_pos_, group_level_, group_circle_, block_first_, load_partial_);
+  add_up(ng, load_partial_, load_total_);
 }
 
 }  // namespace particula

@@ -4,7 +4,9 @@
 // backend's own arrays (the constants' pointers are ignored), whatever the entries' order.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -36,8 +38,8 @@ Case settling_cylinder() {
 }
 
 /// Up to three entries per fluid particle, of random groups and weights, with the particle's
-/// random area (0: its volume), each particle's entries consecutive, in two passes over the fluid (a particle's
-/// entries of the two passes apart, in different blocks).
+/// random area (0: its volume), each particle's entries consecutive, in two passes over the fluid (a
+/// particle's entries of the two passes apart, in different blocks).
 std::vector<BandEntry> random_band(const Particles& P, std::size_t groups) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<real> u(-1, 1);
@@ -69,6 +71,27 @@ bool close(real a, real b) { return std::abs(a - b) <= kRoundOff * (std::abs(a) 
 bool same(Vec2 a, Vec2 b) {
   const real scale = kRoundOff * (norm(a) + norm(b)) + 1e-300;
   return std::abs(a.x - b.x) <= scale && std::abs(a.y - b.y) <= scale;
+}
+
+/// Each block's slots as LoadBand numbers them (the groups in the order they first appear in the
+/// block); returns where each block's slots start, and `slot_group` the group of each slot.
+std::vector<std::int32_t> slot_group;
+std::vector<std::size_t> assign_slots(std::vector<BandEntry>& band, std::size_t groups) {
+  std::vector<std::size_t> first{0};
+  slot_group.clear();
+  for (std::size_t e0 = 0; e0 < band.size(); e0 += kBandBlock) {
+    std::vector<std::int32_t> slot_of(groups, -1);
+    for (std::size_t e = e0; e < std::min(band.size(), e0 + kBandBlock); ++e) {
+      std::int32_t& slot = slot_of[static_cast<std::size_t>(band[e].group)];
+      if (slot < 0) {
+        slot = static_cast<std::int32_t>(slot_group.size() - first.back());
+        slot_group.push_back(band[e].group);
+      }
+      band[e].slot = static_cast<std::uint16_t>(slot);
+    }
+    first.push_back(slot_group.size());
+  }
+  return first;
 }
 
 /// The host's particles and fields of the stage as the per-entry functions read them.
@@ -132,10 +155,53 @@ TEST(BandEntries, TheCpuBackendEvaluatesEveryEntryAsTheSharedFunctions) {
     EXPECT_TRUE(close(num_den[e].y, den)) << e << ": " << num_den[e].y << " against " << den;
     Vec2 efp, efv, et, efd;
     band_entry_load(ref, band[e], efp, efv, et, efd);
-    EXPECT_TRUE(same(fp[e], efp) && same(fv[e], efv) && same(torque[e], et) && same(fd[e], efd)) << "entry " << e;
+    EXPECT_TRUE(same(fp[e], efp) && same(fv[e], efv) && same(torque[e], et) && same(fd[e], efd))
+        << "entry " << e;
     damped += norm2(efd) > 0;
   }
   EXPECT_GT(damped, band.size() / 2) << "the damping's share read from the stage's accelerations";
+
+  // the loads summed per block slot: the CPU adds each entry as it evaluates it, the host sum
+  // adds the per-entry loads, both in the entries' order within each block
+  std::vector<BandEntry> slotted = band;
+  const std::vector<std::size_t> block_first = assign_slots(slotted, ng);
+  ASSERT_GT(block_first.size(), 3u);
+  std::vector<std::uint8_t> circle(ng);
+  for (std::size_t k = 0; k < ng; ++k) circle[k] = k % 2;
+  host.set_load_band(slotted);
+  std::vector<BandLoadSum> fused, summed;
+  host.band_load_sums(scalars, group_pos, group_level, circle, block_first, fused);
+  host.band_loads(scalars, group_pos, group_level, fp, fv, torque, fd);
+  sum_band_entry_loads(slotted, block_first, circle, fp, fv, torque, fd, summed);
+  std::vector<BandLoadSum> expected(block_first.back()), plain(block_first.back());
+  std::vector<real> magnitude(block_first.back());
+  for (std::size_t e = 0; e < slotted.size(); ++e) {
+    const BandEntry& be = slotted[e];
+    const std::size_t q = block_first[e / kBandBlock] + be.slot;
+    ASSERT_EQ(slot_group[q], be.group);
+    add_band_entry_load(expected[q], fp[e], fv[e], torque[e], fd[e],
+                        circle[static_cast<std::size_t>(be.group)] && be.in_film);
+    add_band_entry_load(plain[q], fp[e], fv[e], torque[e], fd[e], false);
+    magnitude[q] += norm(fp[e]) + norm(fv[e]) + norm(fd[e]) + std::abs(torque[e].x) + std::abs(torque[e].y);
+  }
+  ASSERT_EQ(fused.size(), expected.size());
+  ASSERT_EQ(summed.size(), expected.size());
+  std::size_t film_torques = 0;
+  for (std::size_t q = 0; q < expected.size(); ++q) {
+    const real tol = kRoundOff * magnitude[q] + 1e-300;
+    const BandLoadSum& a = fused[q];
+    const BandLoadSum& b = expected[q];
+    EXPECT_TRUE(norm(a.fp - b.fp) <= tol && norm(a.fv - b.fv) <= tol && norm(a.fd - b.fd) <= tol &&
+                std::abs(a.torque - b.torque) <= tol)
+        << "slot " << q;
+    // additions only: the host sum is the expected one bit for bit
+    const auto bits = [](Vec2 u, Vec2 v) { return u.x == v.x && u.y == v.y; };
+    EXPECT_TRUE(bits(summed[q].fp, b.fp) && bits(summed[q].fv, b.fv) && bits(summed[q].fd, b.fd) &&
+                summed[q].torque == b.torque)
+        << "slot " << q;
+    film_torques += plain[q].torque != b.torque;
+  }
+  EXPECT_GT(film_torques, 0u) << "a circle's entries in a film leave out their pressure torque";
 
   // a later band replaces the entries
   const std::vector<BandEntry> fewer(band.begin() + 5, band.begin() + 20);

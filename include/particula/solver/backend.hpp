@@ -102,6 +102,13 @@ class Backend {
   virtual void band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
                           const std::vector<real>& group_level, std::vector<Vec2>& fp, std::vector<Vec2>& fv,
                           std::vector<Vec2>& torque, std::vector<Vec2>& fd) = 0;
+  /// band_loads summed per block slot as sum_band_entry_loads does: the partial sums LoadBand
+  /// adds up per group (`circle[k]`: group k is a circular body). The CPU adds each entry as it
+  /// evaluates it; a device sums its downloaded entries on the host.
+  virtual void band_load_sums(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
+                              const std::vector<real>& group_level, const std::vector<std::uint8_t>& circle,
+                              const std::vector<std::size_t>& block_first,
+                              std::vector<BandLoadSum>& partial) = 0;
   /// Surface particle velocities and accelerations from the group motions; with `place`, also
   /// positions and analytic normals.
   virtual void surface_motion(const std::vector<GroupMotion>& motions, bool place) = 0;
@@ -123,6 +130,6 @@ bool cuda_backend_available(std::string* why);
 /// The CUDA backend for the given physics and grid (throws std::runtime_error when this build
 /// has none or no GPU is present).
 std::unique_ptr<Backend> make_cuda_backend(const PhysicsParams& prm, const GridGeometry& grid,
-                                                 const WendlandC2& kernel, const Particles& P);
+                                           const WendlandC2& kernel, const Particles& P);
 
 }  // namespace particula

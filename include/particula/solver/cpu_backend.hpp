@@ -52,9 +52,14 @@ class CpuBackend final : public Backend {
   void set_buffer_particles(const std::vector<std::uint32_t>&, const Particles&) override {}
   void set_load_band(const std::vector<BandEntry>& band) override;
   void band_levels(const LoadArrays& scalars, std::vector<Vec2>& num_den) override;
-  void band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos, const std::vector<real>& group_level,
-                  std::vector<Vec2>& fp, std::vector<Vec2>& fv, std::vector<Vec2>& torque,
-                  std::vector<Vec2>& fd) override;
+  /// Fused: each entry's load added into its slot as it is evaluated (no per-entry arrays).
+  void band_load_sums(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
+                      const std::vector<real>& group_level, const std::vector<std::uint8_t>& circle,
+                      const std::vector<std::size_t>& block_first,
+                      std::vector<BandLoadSum>& partial) override;
+  void band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
+                  const std::vector<real>& group_level, std::vector<Vec2>& fp, std::vector<Vec2>& fv,
+                  std::vector<Vec2>& torque, std::vector<Vec2>& fd) override;
   void surface_motion(const std::vector<GroupMotion>& motions, bool place) override;
 
   real end_of_step(real dt, bool single_layer) override;

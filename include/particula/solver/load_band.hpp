@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "particula/core/types.hpp"
 #include "particula/bodies/contact_pairs.hpp"
+#include "particula/core/types.hpp"
 #include "particula/neighbors/body_cells.hpp"
 #include "particula/neighbors/domain.hpp"
 #include "particula/neighbors/neighbor_list.hpp"
@@ -76,8 +76,8 @@ class LoadBand {
   /// the neighbours `nbrs` at x; handed to `backend`.
   void build(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs, Backend& backend);
   /// One thread's entries for fluid particles [f0, f1) of the fluid block, in particle order.
-  void build_entries(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs, std::size_t f0,
-                     std::size_t f1, std::vector<BandEntry>& part);
+  void build_entries(const BandScene& s, const std::vector<Vec2>& x, const HostNeighbors& nbrs,
+                     std::size_t f0, std::size_t f1, std::vector<BandEntry>& part);
   /// Whether, since the kept band was built (positions x now), a solid surface has moved more
   /// than numerics.load_band_motion, two solids near each other have closed in by more than
   /// solids_closed_in allows, or a particle has moved more than its limit, relative to its
@@ -99,6 +99,9 @@ class LoadBand {
   /// in parallel into `partial`, and their sums are added per group in block order.
   template <class T, class BlockSum>
   void sum(std::size_t groups, std::vector<T>& partial, std::vector<T>& total, BlockSum block_sum) const;
+  /// The blocks' partial sums (per slot) added per group in block order into `total`.
+  template <class T>
+  void add_up(std::size_t groups, const std::vector<T>& partial, std::vector<T>& total) const;
   /// The solids within `reach` of x (walls, then the bodies of the cells round x): at most `max`.
   int near_solids(const BandScene& s, Vec2 x, real reach, NearSolid* out, int max) const;
   /// Solid k's distance and its gradient at x into `out` when x is within `reach` of it.
@@ -106,7 +109,8 @@ class LoadBand {
   /// The area that weighs fluid particle i's grad(phi) terms (positions x, neighbours `nbrs`): its
   /// Voronoi cell among the particles within h, or 0 (its volume m / rho) when a surface particle
   /// is within h or the cell is not closed.
-  real cell_area(const BandScene& s, std::size_t i, const std::vector<Vec2>& x, const HostNeighbors& nbrs) const;
+  real cell_area(const BandScene& s, std::size_t i, const std::vector<Vec2>& x,
+                 const HostNeighbors& nbrs) const;
   /// The walls at the band's poses and the bodies' cos / sin of their angles, once a build.
   void place_solids(const BandScene& s);
   /// The bodies binned into cells of (largest bounding radius + reach), once a build.
@@ -122,18 +126,6 @@ class LoadBand {
   void smooth_pressure_load(const BandScene& s, const LoadArrays& a, std::size_t k, Vec2& force,
                             real& torque) const;
 
-  struct LoadSum {
-    Vec2 fp, fv, fd;  // fd: the odd-even damping's share (band_share_damping), not a load
-    real torque = 0;
-    LoadSum& operator+=(const LoadSum& o) {
-      fp += o.fp;
-      fv += o.fv;
-      fd += o.fd;
-      torque += o.torque;
-      return *this;
-    }
-  };
-
   // the entries of this band in particle order, and the groups of each block of entries
   std::vector<BandEntry> band_;
   std::vector<std::vector<BandEntry>> parts_;  // per thread: the entries of its range of particles
@@ -142,10 +134,9 @@ class LoadBand {
   std::vector<std::int32_t> slot_group_;       // the group of each block's slot
   // the sums of a stage
   std::vector<Vec2> level_partial_, level_total_;  // (num, den) of K_B per block slot / group
-  std::vector<LoadSum> load_partial_, load_total_;
+  std::vector<BandLoadSum> load_partial_, load_total_;
   std::vector<std::uint8_t> group_circle_;  // group k is a circular body
-  std::vector<Vec2> entry_fp_, entry_fv_, entry_fd_, group_pos_;  // per entry from the backend
-  std::vector<Vec2> entry_torque_;  // per entry: torque of its pressure part (x) and viscous part (y)
+  std::vector<Vec2> entry_fp_, group_pos_;  // per entry from the backend: (num, den) of K_B
   std::vector<real> group_level_;
   // the solids as the band was built
   BodyCells bodies_;  // the bodies binned once a build for near_solids
@@ -156,14 +147,14 @@ class LoadBand {
   std::vector<Vec2> pos_;         // group k's position the band is built at
   std::vector<real> angle_;       // group k's angle the band is built at
   // the kept band (numerics.load_band_motion)
-  LoadBandState built_;              // where the kept band was built
-  bool restore_ = false;             // built_ came from a checkpoint: build the band from it
-  std::vector<Vec2> shift_;          // group k's displacement since the band's build
-  std::vector<real> turn_reach_;     // how far group k's turn since the build can move its surface
-  std::vector<Vec2> turn_cs_;        // cos and sin of group k's turn since the band's build
-  BodyList body_list_;               // the bodies, for solids_closed_in
-  std::vector<BodyPair> pairs_;      // bodies near each other (solids_closed_in)
-  std::vector<real> limit2_;         // each particle's kept-band motion limit, squared
+  LoadBandState built_;               // where the kept band was built
+  bool restore_ = false;              // built_ came from a checkpoint: build the band from it
+  std::vector<Vec2> shift_;           // group k's displacement since the band's build
+  std::vector<real> turn_reach_;      // how far group k's turn since the build can move its surface
+  std::vector<Vec2> turn_cs_;         // cos and sin of group k's turn since the band's build
+  BodyList body_list_;                // the bodies, for solids_closed_in
+  std::vector<BodyPair> pairs_;       // bodies near each other (solids_closed_in)
+  std::vector<real> limit2_;          // each particle's kept-band motion limit, squared
   std::vector<std::int32_t> anchor_;  // the solid a particle next to one moves relative to, or -1
   std::int64_t builds_ = 0;
 };

@@ -29,6 +29,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "particula/core/types.hpp"
 #include "particula/neighbors/domain.hpp"
@@ -186,7 +187,8 @@ PARTICULA_HD void band_partition_sum(const NearSolid* near, int count, real reac
 
 /// phi_B = w_B / S and its gradient for the solid `near` of a particle whose partition sum is
 /// S, gradS (band_partition_sum).
-PARTICULA_HD void band_partition_of(const NearSolid& near, real S, Vec2 gradS, real reach, real& phi, Vec2& grad_phi) {
+PARTICULA_HD void band_partition_of(const NearSolid& near, real S, Vec2 gradS, real reach, real& phi,
+                                    Vec2& grad_phi) {
   phi = near.w / S;
   // grad(w_k / S) = (grad w_k - phi grad S) / S
   grad_phi = ((near.dw / reach) * near.n - phi * gradS) / S;
@@ -194,7 +196,8 @@ PARTICULA_HD void band_partition_of(const NearSolid& near, real S, Vec2 gradS, r
 
 /// phi and grad phi of solid k among the `count` solids near a particle, weighed by
 /// weigh_near_solids with the same reach: phi_B = w_B / (1 + sum_C w_C).
-PARTICULA_HD void band_partition(const NearSolid* near, int count, int k, real reach, real& phi, Vec2& grad_phi) {
+PARTICULA_HD void band_partition(const NearSolid* near, int count, int k, real reach, real& phi,
+                                 Vec2& grad_phi) {
   real S;
   Vec2 gradS;
   band_partition_sum(near, count, reach, S, gradS);
@@ -215,8 +218,8 @@ struct LoadArrays {
   const Vec2* group_pos = nullptr;        // reference point X_B of each rigid group
   const real* group_level = nullptr;      // K_B of each group's smooth pressure field (smooth_pressure)
   real mu = 0, nu = 0;
-  real rho0 = 0, c2 = 0, p0 = 0;          // the equation of state P = p0 + c^2 (rho - rho0)
-  Vec2 g_h, x_ref;                        // acceleration whose hydrostatic pressure is taken out
+  real rho0 = 0, c2 = 0, p0 = 0;  // the equation of state P = p0 + c^2 (rho - rho0)
+  Vec2 g_h, x_ref;                // acceleration whose hydrostatic pressure is taken out
 };
 
 /// Shape of the smooth pressure field: P_h(x) = p0 - rho0 c^2 + K_B e(x), e(x) =
@@ -235,14 +238,14 @@ PARTICULA_HD real smooth_pressure(const LoadArrays& a, std::int32_t g, Vec2 x) {
 /// solids differ only in phi, grad phi, K_B and X_B).
 struct BandSample {
   real m = 0;
-  real w = 0;       // volume m / rho
-  real area = 0;    // weight of the grad(phi) terms: BandEntry::area, or w when that is 0
-  real p_rel = 0;   // P_i - p0 + rho0 c^2: the pressure above the state's zero density
-  real shape = 0;   // e(x_i) of the smooth pressure (smooth_pressure_shape)
-  Mat2 tau;         // mu (L + L^T - tr(L) I), L_ab = d_a V_b (renormalized, P.7)
-  Vec2 m_rate_p;    // m_i (-<grad P>_i / rho_i): the pressure share of the particle's m (a - f)
-  Vec2 m_rate_v;    // m_i nu <lap V>_i: the viscous share
-  Vec2 m_rate_d;    // m_i kappa (<lap V>_i - <div <grad V>>_i): the odd-even damping's (not a load)
+  real w = 0;      // volume m / rho
+  real area = 0;   // weight of the grad(phi) terms: BandEntry::area, or w when that is 0
+  real p_rel = 0;  // P_i - p0 + rho0 c^2: the pressure above the state's zero density
+  real shape = 0;  // e(x_i) of the smooth pressure (smooth_pressure_shape)
+  Mat2 tau;        // mu (L + L^T - tr(L) I), L_ab = d_a V_b (renormalized, P.7)
+  Vec2 m_rate_p;   // m_i (-<grad P>_i / rho_i): the pressure share of the particle's m (a - f)
+  Vec2 m_rate_v;   // m_i nu <lap V>_i: the viscous share
+  Vec2 m_rate_d;   // m_i kappa (<lap V>_i - <div <grad V>>_i): the odd-even damping's (not a load)
   Vec2 x;
 };
 
@@ -301,9 +304,44 @@ PARTICULA_HD void band_share_load(const BandSample& s, real phi, Vec2 grad_phi, 
 /// the damping took from the fluid next to each solid, for budgets and for judging the resolution.
 PARTICULA_HD Vec2 band_share_damping(const BandSample& s, real phi) { return -phi * s.m_rate_d; }
 
+/// One group's sums over band entries (a block's partial sum, or the group's total): pressure
+/// and viscous forces, the odd-even damping's share (band_share_damping, not a load) and the torque.
+struct BandLoadSum {
+  Vec2 fp, fv, fd;
+  real torque = 0;
+  PARTICULA_HD BandLoadSum& operator+=(const BandLoadSum& o) {
+    fp += o.fp;
+    fv += o.fv;
+    fd += o.fd;
+    torque += o.torque;
+    return *this;
+  }
+};
+
+/// Adds one entry's load (torque: of its pressure part in x, its viscous part in y) to its group's
+/// sum. A circle takes no torque from pressure about its centre, and the band's pressure torque is
+/// not resolved in a film thinner than about two spacings (docs/method.md, "Forces on solids"):
+/// for a circle's entry in such a film only the viscous part counts.
+PARTICULA_HD void add_band_entry_load(BandLoadSum& sum, Vec2 fp, Vec2 fv, Vec2 torque, Vec2 fd,
+                                      bool viscous_torque_only) {
+  sum.fp += fp;
+  sum.fv += fv;
+  sum.fd += fd;
+  sum.torque += viscous_torque_only ? torque.y : torque.x + torque.y;
+}
+
+/// The entries' loads (fp, fv, torque, fd per entry, as band_entry_load gives them) summed per
+/// block slot: block b's entries (kBandBlock of them, in band order) add in that order into
+/// partial[block_first[b] + entry.slot] (add_band_entry_load; `circle[k]`: group k is a circular
+/// body); blocks in parallel. The one order of additions whatever the thread count or backend.
+void sum_band_entry_loads(const std::vector<BandEntry>& band, const std::vector<std::size_t>& block_first,
+                          const std::vector<std::uint8_t>& circle, const std::vector<Vec2>& fp,
+                          const std::vector<Vec2>& fv, const std::vector<Vec2>& torque,
+                          const std::vector<Vec2>& fd, std::vector<BandLoadSum>& partial);
+
 /// band_share_load of entry e with its particle's sample s and its group's K_B and X_B.
-PARTICULA_HD void band_entry_share(const LoadArrays& a, const BandSample& s, const BandEntry& e, Vec2& fp, Vec2& fv,
-                                   Vec2& torque) {
+PARTICULA_HD void band_entry_share(const LoadArrays& a, const BandSample& s, const BandEntry& e, Vec2& fp,
+                                   Vec2& fv, Vec2& torque) {
   band_share_load(s, e.phi, e.grad_phi, a.group_level[e.group] * s.shape,
                   a.domain.separation(s.x, a.group_pos[e.group]), a, fp, fv, torque);
 }
