@@ -101,6 +101,8 @@ class CudaBackend final : public Backend {
   void band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
                   const std::vector<real>& group_level, std::vector<Vec2>& fp, std::vector<Vec2>& fv,
                   std::vector<Vec2>& torque, std::vector<Vec2>& fd) override;
+  void band_level_sums(const LoadArrays& scalars, const std::vector<std::size_t>& block_first,
+                       std::vector<Vec2>& partial) override;
   void band_load_sums(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
                       const std::vector<real>& group_level, const std::vector<std::uint8_t>& circle,
                       const std::vector<std::size_t>& block_first, std::vector<BandLoadSum>& partial) override;
@@ -155,7 +157,7 @@ class CudaBackend final : public Backend {
   // band momentum loads (numerics.force = momentum): the step's entries, per-entry loads
   DArray<BandEntry> band_;
   std::vector<BandEntry> band_host_;
-  std::vector<Vec2> entry_fp_, entry_fv_, entry_torque_, entry_fd_;  // downloaded per-entry loads
+  std::vector<Vec2> entry_fp_, entry_fv_, entry_torque_, entry_fd_;  // downloaded per-entry loads (fp: levels too)
   DArray<Vec2> group_pos_, band_fp_, band_fv_, band_fd_;
   DArray<Vec2> band_torque_;
   DArray<real> group_level_;

@@ -138,6 +138,12 @@ void CudaBackend::band_loads(const LoadArrays& scalars, const std::vector<Vec2>&
   band_fd_.download(fd);
 }
 
+void CudaBackend::band_level_sums(const LoadArrays& scalars, const std::vector<std::size_t>& block_first,
+                                  std::vector<Vec2>& partial) {
+  band_levels(scalars, entry_fp_);
+  sum_band_entry_levels(band_host_, block_first, entry_fp_, partial);
+}
+
 void CudaBackend::band_load_sums(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
                                  const std::vector<real>& group_level, const std::vector<std::uint8_t>& circle,
                                  const std::vector<std::size_t>& block_first, std::vector<BandLoadSum>& partial) {

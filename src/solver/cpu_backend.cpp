@@ -484,6 +484,17 @@ void CpuBackend::band_loads(const LoadArrays& scalars, const std::vector<Vec2>& 
   });
 }
 
+void CpuBackend::band_level_sums(const LoadArrays& scalars, const std::vector<std::size_t>& block_first,
+                                 std::vector<Vec2>& partial) {
+  const LoadArrays a = band_arrays(scalars);
+  partial.assign(block_first.empty() ? 0 : block_first.back(), Vec2{});
+  each_band_sample(a, band_, [&](std::size_t e, const BandSample& s) {
+    Vec2 num_den;
+    band_share_level(s, band_[e].phi, num_den.x, num_den.y);
+    partial[block_first[e / kBandBlock] + band_[e].slot] += num_den;
+  });
+}
+
 void CpuBackend::band_load_sums(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
                                 const std::vector<real>& group_level, const std::vector<std::uint8_t>& circle,
                                 const std::vector<std::size_t>& block_first,

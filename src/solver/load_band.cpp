@@ -238,19 +238,6 @@ void LoadBand::assign_slots(std::size_t groups) {
       slot_group_[block_first_[b] + band_[e].slot] = band_[e].group;
 }
 
-template <class T, class BlockSum>
-void LoadBand::sum(std::size_t groups, std::vector<T>& partial, std::vector<T>& total,
-                   BlockSum block_sum) const {
-  // Each block's sum per group (slots), in parallel, then the blocks' sums added per group in
-  // block order: one fixed order of additions whatever the thread count.
-  const std::size_t ne = band_.size(), nblocks = block_first_.size() - 1;
-  partial.assign(block_first_[nblocks], T{});
-#pragma omp parallel for schedule(static)
-  for (std::size_t b = 0; b < nblocks; ++b)
-    block_sum(b * kBandBlock, std::min(ne, (b + 1) * kBandBlock), partial.data() + block_first_[b]);
-  add_up(groups, partial, total);
-}
-
 template <class T>
 void LoadBand::add_up(std::size_t groups, const std::vector<T>& partial, std::vector<T>& total) const {
   total.assign(groups, T{});
@@ -306,10 +293,8 @@ void LoadBand::sum_levels(const BandScene& s, const LoadArrays& a, Backend& back
   // pressure's constant is set by the fluid's mass in a closed box: a P_h off by a constant C
   // adds C times the band's quadrature error of int grad(phi) = 0). The backend evaluates every
   // entry, and the entries are summed here in blocks.
-  backend.band_levels(a, entry_fp_);  // (num, den) per entry
-  sum(s.groups.size(), level_partial_, level_total_, [&](std::size_t e0, std::size_t e1, Vec2* sums) {
-    for (std::size_t e = e0; e < e1; ++e) sums[band_[e].slot] += entry_fp_[e];
-  });
+  backend.band_level_sums(a, block_first_, level_partial_);  // (num, den) per block slot
+  add_up(s.groups.size(), level_partial_, level_total_);
   for (std::size_t k = 0; k < s.groups.size(); ++k)
     if (level_total_[k].y > 0) group_level_[k] = level_total_[k].x / level_total_[k].y;
 }

@@ -203,6 +203,28 @@ TEST(BandEntries, TheCpuBackendEvaluatesEveryEntryAsTheSharedFunctions) {
   }
   EXPECT_GT(film_torques, 0u) << "a circle's entries in a film leave out their pressure torque";
 
+  // the levels summed per block slot likewise
+  std::vector<Vec2> fused_levels, summed_levels;
+  host.band_level_sums(scalars, block_first, fused_levels);
+  host.band_levels(scalars, num_den);
+  sum_band_entry_levels(slotted, block_first, num_den, summed_levels);
+  std::vector<Vec2> expected_levels(block_first.back()), level_magnitude(block_first.back());
+  for (std::size_t e = 0; e < slotted.size(); ++e) {
+    const std::size_t q = block_first[e / kBandBlock] + slotted[e].slot;
+    expected_levels[q] += num_den[e];
+    level_magnitude[q] += Vec2{std::abs(num_den[e].x), std::abs(num_den[e].y)};
+  }
+  ASSERT_EQ(fused_levels.size(), expected_levels.size());
+  ASSERT_EQ(summed_levels.size(), expected_levels.size());
+  for (std::size_t q = 0; q < expected_levels.size(); ++q) {
+    EXPECT_LE(std::abs(fused_levels[q].x - expected_levels[q].x), kRoundOff * level_magnitude[q].x + 1e-300)
+        << q;
+    EXPECT_LE(std::abs(fused_levels[q].y - expected_levels[q].y), kRoundOff * level_magnitude[q].y + 1e-300)
+        << q;
+    EXPECT_TRUE(summed_levels[q].x == expected_levels[q].x && summed_levels[q].y == expected_levels[q].y)
+        << q;
+  }
+
   // a later band replaces the entries
   const std::vector<BandEntry> fewer(band.begin() + 5, band.begin() + 20);
   host.set_load_band(fewer);

@@ -102,6 +102,10 @@ class Backend {
   virtual void band_loads(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
                           const std::vector<real>& group_level, std::vector<Vec2>& fp, std::vector<Vec2>& fv,
                           std::vector<Vec2>& torque, std::vector<Vec2>& fd) = 0;
+  /// band_levels summed per block slot as sum_band_entry_levels does (num, den of each group's K_B
+  /// per block); the CPU adds each entry as it evaluates it, a device sums its downloaded entries.
+  virtual void band_level_sums(const LoadArrays& scalars, const std::vector<std::size_t>& block_first,
+                               std::vector<Vec2>& partial) = 0;
   /// band_loads summed per block slot as sum_band_entry_loads does: the partial sums LoadBand
   /// adds up per group (`circle[k]`: group k is a circular body). The CPU adds each entry as it
   /// evaluates it; a device sums its downloaded entries on the host.

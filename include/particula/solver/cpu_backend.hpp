@@ -52,6 +52,9 @@ class CpuBackend final : public Backend {
   void set_buffer_particles(const std::vector<std::uint32_t>&, const Particles&) override {}
   void set_load_band(const std::vector<BandEntry>& band) override;
   void band_levels(const LoadArrays& scalars, std::vector<Vec2>& num_den) override;
+  /// Fused: each entry's level added into its slot as it is evaluated (no per-entry array).
+  void band_level_sums(const LoadArrays& scalars, const std::vector<std::size_t>& block_first,
+                       std::vector<Vec2>& partial) override;
   /// Fused: each entry's load added into its slot as it is evaluated (no per-entry arrays).
   void band_load_sums(const LoadArrays& scalars, const std::vector<Vec2>& group_pos,
                       const std::vector<real>& group_level, const std::vector<std::uint8_t>& circle,

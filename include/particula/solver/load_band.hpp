@@ -94,11 +94,6 @@ class LoadBand {
   /// Each entry's slot among the groups of its block of kBandBlock entries, and each block's
   /// groups (block_first_, slot_group_).
   void assign_slots(std::size_t groups);
-  /// A per-entry quantity summed per group into `total` (size: groups) in one fixed order:
-  /// block_sum(e0, e1, sums) adds entries [e0, e1) of one block into sums[slot], the blocks run
-  /// in parallel into `partial`, and their sums are added per group in block order.
-  template <class T, class BlockSum>
-  void sum(std::size_t groups, std::vector<T>& partial, std::vector<T>& total, BlockSum block_sum) const;
   /// The blocks' partial sums (per slot) added per group in block order into `total`.
   template <class T>
   void add_up(std::size_t groups, const std::vector<T>& partial, std::vector<T>& total) const;
@@ -136,7 +131,7 @@ class LoadBand {
   std::vector<Vec2> level_partial_, level_total_;  // (num, den) of K_B per block slot / group
   std::vector<BandLoadSum> load_partial_, load_total_;
   std::vector<std::uint8_t> group_circle_;  // group k is a circular body
-  std::vector<Vec2> entry_fp_, group_pos_;  // per entry from the backend: (num, den) of K_B
+  std::vector<Vec2> group_pos_;
   std::vector<real> group_level_;
   // the solids as the band was built
   BodyCells bodies_;  // the bodies binned once a build for near_solids

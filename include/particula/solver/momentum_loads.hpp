@@ -88,7 +88,7 @@ struct BandEntry {
   real phi = 0;
   Vec2 grad_phi;
   real area = 0;
-  // this entry's group among the groups of its block of kBandBlock entries (LoadBand::sum)
+  // this entry's group among the groups of its block of kBandBlock entries (sum_band_entry_loads)
   std::uint16_t slot = 0;
   // the particle sits in a film between this solid and another thinner than kFilmGap h (the sum
   // of its distances to the two): the band's pressure torque is not resolved there
@@ -329,6 +329,11 @@ PARTICULA_HD void add_band_entry_load(BandLoadSum& sum, Vec2 fp, Vec2 fv, Vec2 t
   sum.fd += fd;
   sum.torque += viscous_torque_only ? torque.y : torque.x + torque.y;
 }
+
+/// The entries' levels (num, den per entry, as band_entry_level gives them) summed per block
+/// slot in the order sum_band_entry_loads adds the loads.
+void sum_band_entry_levels(const std::vector<BandEntry>& band, const std::vector<std::size_t>& block_first,
+                           const std::vector<Vec2>& num_den, std::vector<Vec2>& partial);
 
 /// The entries' loads (fp, fv, torque, fd per entry, as band_entry_load gives them) summed per
 /// block slot: block b's entries (kBandBlock of them, in band order) add in that order into
