@@ -1,5 +1,5 @@
-// The band's per-entry loads summed per block slot on the host (a device's downloaded entries;
-// the tests' reference for the CPU's fused sums).
+// The band's per-entry levels and loads summed per block slot on the host (a device's downloaded
+// entries; the tests' reference for the CPU's fused sums).
 #include <algorithm>
 
 #include "particula/solver/momentum_loads.hpp"
