@@ -82,6 +82,10 @@ io::JsonObject run_summary(const Session& s, const RunEnd& end, std::optional<do
   drops.set("steps_below", st.dt_drop_steps);
   drops.set("reported_runs", st.dt_drop_reports);
   if (!std::isnan(st.dt_drop_first_time)) drops.set("first_reported_at", st.dt_drop_first_time);
+  io::JsonObject limits;  // what set each step's length
+  for (int k = 0; k < kStepLimits; ++k)
+    limits.set(step_limit_name(static_cast<StepLimit>(k)), st.limited_by[static_cast<std::size_t>(k)]);
+  drops.set("limited_by", limits);
   summary.set("time_step", drops);
   summary.set("overrides", s.overrides);
   add_legend(summary, s.c);

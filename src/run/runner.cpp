@@ -144,10 +144,10 @@ void report_time_step_drop(const Solver& solver, RunStats& stats, Reporter& rep)
   const real dt = solver.last_dt();
   if (std::isnan(stats.dt_drop_first_time)) stats.dt_drop_first_time = solver.time();
   const Failure why = solver.time_step_limit(dt);
-  rep.say(fmt::format("warning: the time step has been below {:g} of the case's {:.3g} s for {} steps (t = {:.9g} s, "
-                      "step {}, dt = {:.3g} s); it is limited by {}",
-                      kTimeStepDrop, solver.case_dt(), kTimeStepDropSteps, solver.time(), solver.step_count(), dt,
-                      why.what));
+  rep.say(fmt::format(
+      "warning: the time step has been below {:g} of the case's {:.3g} s for {} steps (t = {:.9g} s, "
+      "step {}, dt = {:.3g} s); it is limited by {}",
+      kTimeStepDrop, solver.case_dt(), kTimeStepDropSteps, solver.time(), solver.step_count(), dt, why.what));
 }
 
 /// Steps to time.end, writing the outputs on their schedule and a checkpoint every
@@ -175,8 +175,8 @@ void step_to_end(Session& s, Reporter& rep, OutputWriter& write_outputs, io::Pro
     const real target = s.outputs->next_event(c.t_end);
     end.failure = solver.step_to(target);
     if (!end.failure) report_removed_bodies(solver, rep);
-    if (stats.add_step(solver.last_dt(), solver.time() == target, solver.particle_count(),
-                       solver.last_pair_count(), solver.case_dt()))
+    if (stats.add_step(solver.last_dt(), solver.time() == target, solver.last_step_limit(),
+                       solver.particle_count(), solver.last_pair_count(), solver.case_dt()))
       report_time_step_drop(solver, stats, rep);
     if (!end.failure) end.failure = write_outputs(false);
     if (end.failure) break;
@@ -401,7 +401,8 @@ int run_command(const fs::path& case_file, const RunOptions& opt) {
   SignalGuard signals;
   std::unique_ptr<RunDirectory> run_dir;
   try {
-    s.c = opt.case_text ? load_case_text(*opt.case_text, case_file, opt.overrides) : load_case(case_file, opt.overrides);
+    s.c = opt.case_text ? load_case_text(*opt.case_text, case_file, opt.overrides)
+                        : load_case(case_file, opt.overrides);
     check_case_size(s.c);  // before anything is allocated or written
     s.case_hash = case_identity_hash(resolved_case_toml(s.c));
     run_dir = std::make_unique<RunDirectory>(opt.out_dir.empty() ? fs::path("runs") / s.c.name : opt.out_dir,

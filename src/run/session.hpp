@@ -3,6 +3,7 @@
 // (run_summary.cpp). Private to src/run.
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -33,6 +34,8 @@ struct RunStats {
   /// runs of kTimeStepDropSteps or more (each reported once in the log), with the first one's time.
   std::int64_t dt_drop_steps = 0, dt_drop_run = 0, dt_drop_reports = 0;
   real dt_drop_first_time = std::numeric_limits<real>::quiet_NaN();
+  /// The steps each limit set (StepLimit order), shortened ones included.
+  std::array<std::int64_t, kStepLimits> limited_by{};
 
   double wall_seconds() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
@@ -40,9 +43,11 @@ struct RunStats {
   /// Counts a step of `dt`, `capped` when it was shortened to land on a time, against the
   /// case's own step `case_dt`. Returns true when this step completes a run of
   /// kTimeStepDropSteps steps below kTimeStepDrop case_dt (to be reported).
-  bool add_step(real dt, bool capped, std::size_t particles, std::size_t pairs, real case_dt) {
+  bool add_step(real dt, bool capped, StepLimit limit, std::size_t particles, std::size_t pairs,
+                real case_dt) {
     particle_steps += static_cast<double>(particles);
     interactions += static_cast<double>(pairs);
+    ++limited_by[static_cast<std::size_t>(limit)];
     if (capped) return false;
     dt_min = std::isnan(dt_min) ? dt : std::min(dt_min, dt);
     dt_max = std::isnan(dt_max) ? dt : std::max(dt_max, dt);
@@ -70,9 +75,9 @@ struct Session {
   real t_start = 0;
   std::vector<std::string> overrides;  // the --set list of this command
   RunStats stats;
-  ProgressCallback progress;        // the caller's, or empty
-  double next_progress_wall = 0;    // wall seconds of the run when it is due next
-  bool stopped_by_caller = false;   // the progress callback asked the run to stop
+  ProgressCallback progress;       // the caller's, or empty
+  double next_progress_wall = 0;   // wall seconds of the run when it is due next
+  bool stopped_by_caller = false;  // the progress callback asked the run to stop
 };
 
 /// How a run ended, for summary.json: status, exit code and, for exit 3, the failure.

@@ -122,17 +122,41 @@ HealthLimits Solver::health_limits() const {
   return l;
 }
 
-real Solver::stable_dt() const {
+const char* step_limit_name(StepLimit l) {
+  switch (l) {
+    case StepLimit::Acoustic:
+      return "acoustic";
+    case StepLimit::Viscous:
+      return "viscous";
+    case StepLimit::DtMax:
+      return "dt_max";
+    case StepLimit::BodyForce:
+      return "body_force";
+    case StepLimit::Contact:
+      return "contact";
+    case StepLimit::Landing:
+      return "output_time";
+  }
+  return "";
+}
+
+Solver::StableStep Solver::stable_step() const {
   const real dlist = backend_->min_distance();
   const real dmin = dlist > 0 && std::isfinite(dlist) ? dlist : prm_.d0;
   const real vmax = backend_->max_speed();
-  real dt = prm_.cfl * dmin / (prm_.c + vmax);                           // P.30: Courant condition
-  if (prm_.nu > 0) dt = std::min(dt, prm_.cfl * dmin * dmin / prm_.nu);  // P.31: viscous diffusion
-  if (prm_.dt_max > 0) dt = std::min(dt, prm_.dt_max);
+  StableStep st{prm_.cfl * dmin / (prm_.c + vmax), StepLimit::Acoustic};  // P.30: Courant condition
+  const auto tighten = [&st](real dt, StepLimit why) {
+    if (dt < st.dt) st = {dt, why};
+  };
+  if (prm_.nu > 0) tighten(prm_.cfl * dmin * dmin / prm_.nu, StepLimit::Viscous);  // P.31: viscous diffusion
+  if (prm_.dt_max > 0) tighten(prm_.dt_max, StepLimit::DtMax);
   const real contact_dt = contacts_.dt_limit();
-  if (contact_dt > 0) dt = std::min(dt, contact_dt);  // t_c / 20 of the contacts
-  return std::min(dt, body_force_dt());
+  if (contact_dt > 0) tighten(contact_dt, StepLimit::Contact);  // t_c / 20 of the contacts
+  tighten(body_force_dt(), StepLimit::BodyForce);
+  return st;
 }
+
+real Solver::stable_dt() const { return stable_step().dt; }
 
 real Solver::body_force_dt() const {
   // Monaghan's force condition dt <= 0.25 sqrt(h / |f|) for the acceleration f every fluid
@@ -158,7 +182,8 @@ std::optional<Failure> Solver::time_step_collapse(real dt) const {
   if (!(dt < kTimeStepCollapse * dt_scale)) return std::nullopt;
   Failure f = time_step_limit(dt);
   f.what = fmt::format(
-      "the time step collapsed to {:.3g} s, below {:g} of the case's {:.3g} s (cfl d0 / c, cfl d0^2 / nu); it is "
+      "the time step collapsed to {:.3g} s, below {:g} of the case's {:.3g} s (cfl d0 / c, cfl d0^2 / nu); "
+      "it is "
       "limited by {}",
       dt, kTimeStepCollapse, dt_scale, f.what);
   return f;
@@ -211,9 +236,14 @@ std::optional<Failure> Solver::advance(real dt_cap, real land_at) {
   }
   {
     PhaseTimer timer(times_.integration);
-    dt_ = stable_dt();
+    const StableStep st = stable_step();
+    dt_ = st.dt;
+    limit_ = st.limit;
     if (auto f = time_step_collapse(dt_)) return f;
-    if (dt_cap > 0) dt_ = std::min(dt_, dt_cap);
+    if (dt_cap > 0 && dt_cap <= dt_) {
+      dt_ = dt_cap;
+      limit_ = StepLimit::Landing;
+    }
   }
   const real dt = dt_;
   // The time at the end of the step: exactly land_at when the cap limits the step (t_ + dt can
@@ -399,18 +429,20 @@ std::string Solver::weak_compressibility_report(Vec2 failed_at) const {
   std::string out;
   const real mach = vmax / prm_.c;
   if (std::isfinite(mach) && mach > 0.1)
-    out += fmt::format("; the fastest fluid particle (beyond 3 h of this one) moves at {:.3g} m/s, Mach {:.3g} "
-                       "(keep it below 0.1: fluid.c of at least {:.3g} m/s)",
-                       vmax, mach, 10 * vmax);
+    out += fmt::format(
+        "; the fastest fluid particle (beyond 3 h of this one) moves at {:.3g} m/s, Mach {:.3g} "
+        "(keep it below 0.1: fluid.c of at least {:.3g} m/s)",
+        vmax, mach, 10 * vmax);
   const real g = norm(prm_.gravity);
   if (prm_.gravity_in_fluid && g > 0) {
     const Vec2 size = domain_.size();  // g H: |g| times the domain's extent along g (a box's diagonal reach)
     const real head = std::fabs(prm_.gravity.x) * size.x + std::fabs(prm_.gravity.y) * size.y;
     const real squeeze = head / (prm_.c * prm_.c);
     if (squeeze > 0.01)
-      out += fmt::format("; gravity compresses the fluid by g H / c^2 = {:.2g} over the domain's height (keep it "
-                         "below 0.01: fluid.c of at least {:.3g} m/s)",
-                         squeeze, 10 * std::sqrt(head));
+      out += fmt::format(
+          "; gravity compresses the fluid by g H / c^2 = {:.2g} over the domain's height (keep it "
+          "below 0.01: fluid.c of at least {:.3g} m/s)",
+          squeeze, 10 * std::sqrt(head));
   }
   return out;
 }

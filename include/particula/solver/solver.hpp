@@ -17,14 +17,14 @@
 #include "particula/neighbors/body_cells.hpp"
 #include "particula/neighbors/domain.hpp"
 #include "particula/neighbors/neighbor_list.hpp"
+#include "particula/solver/backend.hpp"
 #include "particula/solver/contacts.hpp"
 #include "particula/solver/counters.hpp"
-#include "particula/solver/backend.hpp"
 #include "particula/solver/cpu_backend.hpp"
 #include "particula/solver/failure.hpp"
 #include "particula/solver/load_band.hpp"
-#include "particula/solver/open_boundaries.hpp"
 #include "particula/solver/momentum_loads.hpp"
+#include "particula/solver/open_boundaries.hpp"
 #include "particula/solver/particles.hpp"
 #include "particula/solver/physics_params.hpp"
 #include "particula/solver/rigid_bodies.hpp"
@@ -44,11 +44,18 @@ inline constexpr real kTimeStepCollapse = 1e-4;
 inline constexpr real kTimeStepDrop = 1e-3;
 inline constexpr int kTimeStepDropSteps = 10;
 
-
 /// How a solver starts: from a freshly built scene (boundary pressures are initialized from
 /// P.20) or from a checkpointed state (taken exactly as it is, so a resumed run is bitwise
 /// identical to an uninterrupted one).
 enum class SolverStart { Fresh, Restart };
+
+/// What set a step's length (M.9): the Courant condition (P.30), viscous diffusion (P.31),
+/// time.dt_max, the force condition, a contact's t_c / 20, or the next output or end time the
+/// step was shortened to land on.
+enum class StepLimit { Acoustic, Viscous, DtMax, BodyForce, Contact, Landing };
+inline constexpr int kStepLimits = 6;
+/// The limit's name in summary.json (time_step.limited_by).
+const char* step_limit_name(StepLimit l);
 
 class Solver {
  public:
@@ -86,8 +93,10 @@ class Solver {
   std::size_t last_pair_count() const { return backend_->pair_count(); }
   const PhaseTimes& phase_times() const { return times_; }
 
-  /// Time step of P.29-P.31 for the current state (rebuilds nothing: uses the last list).
+  /// Time step of P.29-P.31 and M.9 for the current state (rebuilds nothing: uses the last list).
   real stable_dt() const;
+  /// What set the last step's length.
+  StepLimit last_step_limit() const { return limit_; }
   /// The force condition 0.25 sqrt(h / |f|) of the body force and gravity on the fluid
   /// (infinite without either).
   real body_force_dt() const;
@@ -177,6 +186,12 @@ class Solver {
   /// naming the limit that collapsed (closest pair, fastest particle or a contact).
   std::optional<Failure> time_step_collapse(real dt) const;
 
+  /// The stable step and the limit that sets it.
+  struct StableStep {
+    real dt;
+    StepLimit limit;
+  };
+  StableStep stable_step() const;
   StageParams stage_params(real dt) const;
   HealthLimits health_limits() const;
   /// The host copy of the particles made current (downloaded from a device when it changed).
@@ -191,6 +206,7 @@ class Solver {
   WendlandC2 kernel_;
   SolverCounters counters_;
   real t_ = 0, dt_ = 0;
+  StepLimit limit_ = StepLimit::Acoustic;
   std::int64_t steps_ = 0;
   PhaseTimes times_;
 
@@ -200,9 +216,9 @@ class Solver {
   Backend* backend_ = nullptr;
   mutable bool host_current_ = true;  // P_ equals the backend's state
   bool device_current_ = true;        // the backend's state equals P_
-  LoadBand band_;          // the band of the momentum loads (solver/load_band.hpp)
-  Contacts contacts_;      // the contacts of the step (solver/contacts.hpp)
-  OpenBoundaries open_;    // inlets and outlets (solver/open_boundaries.hpp)
+  LoadBand band_;                     // the band of the momentum loads (solver/load_band.hpp)
+  Contacts contacts_;                 // the contacts of the step (solver/contacts.hpp)
+  OpenBoundaries open_;               // inlets and outlets (solver/open_boundaries.hpp)
 };
 
 }  // namespace particula
