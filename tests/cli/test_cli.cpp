@@ -59,6 +59,15 @@ TEST(Cli, RunWritesTheRunDirectory) {
   const std::string summary = read(out / "summary.json");
   EXPECT_NE(summary.find("\"status\": \"completed\""), std::string::npos) << summary;
   EXPECT_NEAR(particula::io::json_number_field(summary, "end_time"), 0.1, 1e-12);
+  // Every step is counted under the limit that set it (time_step.limited_by).
+  const std::string limited_by = summary.substr(summary.find("\"limited_by\""));
+  double limited = 0;
+  for (const char* k : {"acoustic", "viscous", "dt_max", "body_force", "contact", "output_time"})
+    limited += particula::io::json_number_field(limited_by, k);
+  EXPECT_EQ(limited, particula::io::json_number_field(summary, "steps")) << summary;
+  EXPECT_GT(particula::io::json_number_field(limited_by, "viscous"), 0)
+      << "viscous diffusion sets this case's step";
+  EXPECT_GT(particula::io::json_number_field(limited_by, "output_time"), 0) << "it lands on 0.05 and 0.1 s";
   // Snapshots parse back with every particle and the documented arrays.
   const double particles = particula::io::json_number_field(summary, "particles");
   int snapshots = 0;
