@@ -265,8 +265,8 @@ TEST(Operators, UnsoundBhatFallsBackToNormalizedIdentity) {
 TEST(Operators, SingularRenormalizationFallsBackToIdentity) {
   Mat2 B;
   // Collinear neighbours: S has rank one.
-  Mat2 S = renormalization_pair(1.0, -2.0, {1.0, 0.0});
-  S += renormalization_pair(1.0, -2.0, {-2.0, 0.0});
+  Mat2 S = renormalization_pair(1.0, -2.0, Vec2{1.0, 0.0});
+  S += renormalization_pair(1.0, -2.0, Vec2{-2.0, 0.0});
   EXPECT_FALSE(renormalization_tensor(S, B));
   EXPECT_EQ(B.xx, 1.0);
   EXPECT_EQ(B.xy, 0.0);

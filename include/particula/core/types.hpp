@@ -18,12 +18,21 @@ namespace particula {
 /// The scalar type of all physics. Keep it one alias so a float build stays possible.
 using real = double;
 
-/// Spatial dimension. The code is written for 2D; types below are the 2D specialisations.
-inline constexpr int kDim = 2;
+/// A vector and a general square matrix of dimension D (2 or 3). The dimension is a parameter
+/// of the types: a formula that differs between 2D and 3D differs through the overloads below
+/// (the cross product, the inverse), never through a test of the dimension. The 3D
+/// specializations and the quaternion are in core/types3.hpp. The 2D operations
+/// are written out component by component, so that their round-off is that of plain code.
+template <int D>
+struct Vec;
+template <int D>
+struct Mat;
 
-struct Vec2 {
+template <>
+struct Vec<2> {
   real x = 0, y = 0;
 };
+using Vec2 = Vec<2>;
 
 PARTICULA_HD Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
 PARTICULA_HD Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
@@ -45,9 +54,11 @@ PARTICULA_HD real norm(Vec2 a) { return std::sqrt(dot(a, a)); }
 PARTICULA_HD Vec2 rotate(Vec2 a, real c, real s) { return {c * a.x - s * a.y, s * a.x + c * a.y}; }
 
 /// General 2x2 matrix, row-major: m[a][b] = xx, xy / yx, yy.
-struct Mat2 {
+template <>
+struct Mat<2> {
   real xx = 0, xy = 0, yx = 0, yy = 0;
 };
+using Mat2 = Mat<2>;
 
 PARTICULA_HD Mat2 operator+(const Mat2& a, const Mat2& b) {
   return {a.xx + b.xx, a.xy + b.xy, a.yx + b.yx, a.yy + b.yy};

@@ -1,21 +1,36 @@
-// Wendland C2 kernel in 2D with h the cut-off radius (docs/method.md section 2, P.37).
+// Wendland C2 kernel in D dimensions with h the cut-off radius (docs/method.md section 2, P.37):
+// the same function of q = r/h in 2D and 3D, normalized to unit integral over the disc or ball.
 #pragma once
 
 #include "particula/core/types.hpp"
 
 namespace particula {
 
-/// W(r,h) = 7/(pi h^2) (1-q)^4 (4q+1) for q = r/h < 1, else 0.
+/// The normalization W0 of the Wendland C2 kernel in D dimensions, W0 = 1 / int (1-q)^4 (4q+1):
+/// 7 / (pi h^2) in 2D, 21 / (2 pi h^3) in 3D.
+template <int D>
+real wendland_normalization(real h);
+template <>
+inline real wendland_normalization<2>(real h) {
+  return 7.0 / (M_PI * h * h);
+}
+template <>
+inline real wendland_normalization<3>(real h) {
+  return 21.0 / (2 * M_PI * h * h * h);
+}
+
+/// W(r,h) = W0 (1-q)^4 (4q+1) for q = r/h < 1, else 0 (W0 = wendland_normalization<D>(h)).
 /// h is the CUT-OFF radius (the support ends at r = h), not half of it.
-struct WendlandC2 {
+template <int D>
+struct Wendland {
   real h = 1;
-  real w0 = 0;      // 7 / (pi h^2)
+  real w0 = 0;      // W0
   real inv_h = 1;
   real f0 = 0;      // -20 W0 / h^2, the factor of F (folded once: F is on the hot path of every pair)
 
-  WendlandC2() = default;
-  explicit WendlandC2(real cutoff)
-      : h(cutoff), w0(7.0 / (M_PI * cutoff * cutoff)), inv_h(1.0 / cutoff), f0(-20 * w0 * inv_h * inv_h) {}
+  Wendland() = default;
+  explicit Wendland(real cutoff)
+      : h(cutoff), w0(wendland_normalization<D>(cutoff)), inv_h(1.0 / cutoff), f0(-20 * w0 * inv_h * inv_h) {}
 
   PARTICULA_HD real W(real r) const {
     const real q = r * inv_h;
@@ -40,5 +55,8 @@ struct WendlandC2 {
     return f0 * (a * a * a);
   }
 };
+
+/// The kernel of the 2D solver.
+using WendlandC2 = Wendland<2>;
 
 }  // namespace particula

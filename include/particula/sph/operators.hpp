@@ -63,13 +63,15 @@ PARTICULA_HD bool bound_sparse_moment(Mat2& S, real floor = kMinMomentEigenvalue
 /// the weights summing to zero neither own value enters, as on a regular lattice. The corrected
 /// moment is bounded below as P.7's is (bound_sparse_moment; `sparse` set when it lifted). Returns
 /// false (B, gamma untouched) without support or with a singular corrected moment.
-PARTICULA_HD bool consistent_gradient_correction(const Mat2& S, Vec2 normal_sum, real support, Vec2 support_r,
-                                                 Mat2& B, Vec2& gamma, bool& sparse) {
+/// The same in 3D (sph/operators3.hpp has the 3D bound and inverse).
+template <int D>
+PARTICULA_HD bool consistent_gradient_correction(const Mat<D>& S, Vec<D> normal_sum, real support, Vec<D> support_r,
+                                                 Mat<D>& B, Vec<D>& gamma, bool& sparse) {
   if (!(support > 0)) return false;
-  const Vec2 g = (1 / support) * normal_sum;
-  Mat2 Sz = S - outer(g, support_r);
+  const Vec<D> g = (1 / support) * normal_sum;
+  Mat<D> Sz = S - outer(g, support_r);
   sparse = bound_sparse_moment(Sz) || sparse;
-  Mat2 Bz;
+  Mat<D> Bz;
   if (!renormalization_tensor(Sz, Bz)) return false;
   B = Bz;
   gamma = g;
@@ -77,14 +79,23 @@ PARTICULA_HD bool consistent_gradient_correction(const Mat2& S, Vec2 normal_sum,
 }
 
 /// Contribution of neighbour j to S = sum_j w_j r_ij (x) gradW_ij, with gradW_ij = F r_ij.
-PARTICULA_HD Mat2 renormalization_pair(real w_j, real F, Vec2 r_ij) { return (w_j * F) * outer(r_ij, r_ij); }
+template <int D>
+PARTICULA_HD Mat<D> renormalization_pair(real w_j, real F, Vec<D> r_ij) {
+  return (w_j * F) * outer(r_ij, r_ij);
+}
 
 /// Contribution of neighbour j to the renormalized gradient of a scalar (P.7):
 /// w_j (B_i . gradW_ij) (u_j - u_i). `BgW` is B_i . gradW_ij already multiplied by w_j.
-PARTICULA_HD Vec2 gradient_pair(Vec2 wBgW, real du_ji) { return du_ji * wBgW; }
+template <int D>
+PARTICULA_HD Vec<D> gradient_pair(Vec<D> wBgW, real du_ji) {
+  return du_ji * wBgW;
+}
 
 /// Contribution to the gradient of a vector field: (w B gradW) (x) (V_j - V_i).
-PARTICULA_HD Mat2 vector_gradient_pair(Vec2 wBgW, Vec2 dV_ji) { return outer(wBgW, dV_ji); }
+template <int D>
+PARTICULA_HD Mat<D> vector_gradient_pair(Vec<D> wBgW, Vec<D> dV_ji) {
+  return outer(wBgW, dV_ji);
+}
 
 // ---- Fatehi-Manzari second derivative (P.10-P.11) -------------------------------------------
 
@@ -231,19 +242,22 @@ PARTICULA_HD bool laplacian_correction_tensor(const LaplacianMoments& m, const M
 
 /// Pair weight of the Fatehi-Manzari Laplacian: since e (x) gradW = W' e (x) e,
 ///   Bhat : 2 w_j (e (x) gradW) = 2 w_j W' (e . Bhat . e).
-PARTICULA_HD real fm_pair_weight(const Mat2& Bhat, real w_j, real dW, Vec2 e) {
+template <int D>
+PARTICULA_HD real fm_pair_weight(const Mat<D>& Bhat, real w_j, real dW, Vec<D> e) {
   return 2 * w_j * dW * dot(e, Bhat * e);
 }
 
 /// Fatehi-Manzari Laplacian pair term for a scalar (P.10):
 ///   weight * [ (u_i - u_j)/r_ij - e_ij . <grad u>_i ].
-PARTICULA_HD real fm_laplacian_pair(real weight, real du_ij, real r, Vec2 e, Vec2 grad_i) {
+template <int D>
+PARTICULA_HD real fm_laplacian_pair(real weight, real du_ij, real r, Vec<D> e, Vec<D> grad_i) {
   return weight * (du_ij / r - dot(e, grad_i));
 }
 
 /// Same for a vector field, with the gradient tensor L_ab = d_a V_b: e . L is the directional
 /// derivative of each component along e.
-PARTICULA_HD Vec2 fm_laplacian_pair(real weight, Vec2 dV_ij, real r, Vec2 e, const Mat2& L_i) {
+template <int D>
+PARTICULA_HD Vec<D> fm_laplacian_pair(real weight, Vec<D> dV_ij, real r, Vec<D> e, const Mat<D>& L_i) {
   return weight * (dV_ij / r - e * L_i);
 }
 
