@@ -28,29 +28,49 @@ real distance2_if_kept(real d2, std::uint32_t keep) {
 
 }  // namespace
 
-void CellGrid::setup(const Domain& domain, real h, real margin) {
-  // cells beyond each bounded edge: one for particles slightly outside, more for a margin
-  const int extra = 1 + (margin > 0 ? static_cast<int>(std::ceil(margin / h)) : 0);
-  geo_ = GridGeometry{};
-  geo_.domain = domain;
-  const Vec2 L = domain.size();
-  auto axis = [&](bool periodic, real len, real lo, int& n, real& cell, real& origin) {
-    if (periodic) {
-      n = static_cast<int>(std::floor(len / h));
-      if (n < 3) throw std::invalid_argument("periodic axis shorter than 3 kernel radii");
-      cell = len / n;
-      origin = lo;
-    } else {
-      n = std::max(1, static_cast<int>(std::ceil(len / h))) + 2 * extra;
-      cell = h;
-      origin = lo - extra * h;
-    }
-  };
-  axis(domain.periodic_x, L.x, domain.lo.x, geo_.nx, geo_.cell_x, geo_.origin.x);
-  axis(domain.periodic_y, L.y, domain.lo.y, geo_.ny, geo_.cell_y, geo_.origin.y);
+namespace {
+
+/// One axis of the grid: floor(L / h) cells of L / n along a periodic axis (at least 3), cells
+/// of h along a bounded one with `extra` more on each side.
+void grid_axis(bool periodic, real len, real lo, real h, int extra, int& n, real& cell, real& origin) {
+  if (periodic) {
+    n = static_cast<int>(std::floor(len / h));
+    if (n < 3) throw std::invalid_argument("periodic axis shorter than 3 kernel radii");
+    cell = len / n;
+    origin = lo;
+  } else {
+    n = std::max(1, static_cast<int>(std::ceil(len / h))) + 2 * extra;
+    cell = h;
+    origin = lo - extra * h;
+  }
 }
 
-void CellGrid::bin(const std::vector<Vec2>& x) {
+/// The cell grid's axes of a domain in D dimensions.
+void set_axes(GridGeometryOf<2>& g, real h, int extra) {
+  const Vec2 L = g.domain.size();
+  grid_axis(g.domain.periodic_x, L.x, g.domain.lo.x, h, extra, g.nx, g.cell_x, g.origin.x);
+  grid_axis(g.domain.periodic_y, L.y, g.domain.lo.y, h, extra, g.ny, g.cell_y, g.origin.y);
+}
+void set_axes(GridGeometryOf<3>& g, real h, int extra) {
+  const Vec3 L = g.domain.size();
+  grid_axis(g.domain.periodic_x, L.x, g.domain.lo.x, h, extra, g.nx, g.cell_x, g.origin.x);
+  grid_axis(g.domain.periodic_y, L.y, g.domain.lo.y, h, extra, g.ny, g.cell_y, g.origin.y);
+  grid_axis(g.domain.periodic_z, L.z, g.domain.lo.z, h, extra, g.nz, g.cell_z, g.origin.z);
+}
+
+}  // namespace
+
+template <int D>
+void CellGridOf<D>::setup(const DomainOf<D>& domain, real h, real margin) {
+  // cells beyond each bounded edge: one for particles slightly outside, more for a margin
+  const int extra = 1 + (margin > 0 ? static_cast<int>(std::ceil(margin / h)) : 0);
+  geo_ = GridGeometryOf<D>{};
+  geo_.domain = domain;
+  set_axes(geo_, h, extra);
+}
+
+template <int D>
+void CellGridOf<D>::bin(const std::vector<Vec<D>>& x) {
   const std::size_t n = x.size();
   const std::size_t ncell = static_cast<std::size_t>(geo_.cell_count());
   cell_of_.resize(n);
@@ -68,17 +88,18 @@ void CellGrid::bin(const std::vector<Vec2>& x) {
   for (std::size_t i = 0; i < n; ++i) sorted_[fill_[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
 }
 
-void build_neighbor_list(const std::vector<Vec2>& x, const Domain& domain, const WendlandC2& kernel,
-                         CellGrid& grid, NeighborList& out) {
+template <int D>
+void build_neighbor_list(const std::vector<Vec<D>>& x, const DomainOf<D>& domain, const Wendland<D>& kernel,
+                         CellGridOf<D>& grid, NeighborList& out) {
   (void)domain;  // the grid carries it
   const std::size_t n = x.size();
   grid.bin(x);
   const real h2 = kernel.h * kernel.h;
-  const GridGeometry& geo = grid.geometry();
+  const GridGeometryOf<D>& geo = grid.geometry();
   const std::uint32_t* sorted = grid.sorted().data();
   const std::uint32_t* cstart = grid.cell_start().data();
   const std::uint32_t* cell_of = grid.cell_of().data();
-  const Vec2* xp = x.data();
+  const Vec<D>* xp = x.data();
 
   // One pass over the candidates: each thread takes a contiguous block of particles, appends
   // their pairs to its own buffer and counts them; the blocks' offsets then follow from the
@@ -90,7 +111,7 @@ void build_neighbor_list(const std::vector<Vec2>& x, const Domain& domain, const
   if (out.thread_pairs.size() < static_cast<std::size_t>(threads)) out.thread_pairs.resize(threads);
   out.thread_offset.assign(threads + 1, 0);
   std::size_t* offset = out.thread_offset.data();
-  const std::size_t max_candidates = 9 * grid.max_occupancy();
+  const std::size_t max_candidates = GridGeometryOf<D>::kCells * grid.max_occupancy();
   real dmin2 = std::numeric_limits<real>::infinity();
 #pragma omp parallel num_threads(threads) reduction(min : dmin2)
   {
@@ -99,7 +120,7 @@ void build_neighbor_list(const std::vector<Vec2>& x, const Domain& domain, const
     std::vector<std::uint32_t>& buf = out.thread_pairs[t];
     std::size_t used = 0;
     for (std::size_t i = lo; i < hi; ++i) {
-      // Room for every candidate of i's 3x3 cells (i included), so the visit writes without checks.
+      // Room for every candidate of i's 3^D cells (i included), so the visit writes without checks.
       if (used + max_candidates > buf.size()) buf.resize(std::max(2 * buf.size(), used + max_candidates));
       std::uint32_t* dst = buf.data() + used;
       std::uint32_t count = 0;
@@ -135,5 +156,12 @@ void build_neighbor_list(const std::vector<Vec2>& x, const Domain& domain, const
   }
   out.min_distance = std::sqrt(dmin2);
 }
+
+template class CellGridOf<2>;
+template class CellGridOf<3>;
+template void build_neighbor_list<2>(const std::vector<Vec2>&, const Domain&, const WendlandC2&, CellGrid&,
+                                     NeighborList&);
+template void build_neighbor_list<3>(const std::vector<Vec3>&, const Domain3&, const Wendland<3>&, CellGrid3&,
+                                     NeighborList&);
 
 }  // namespace particula

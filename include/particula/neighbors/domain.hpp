@@ -1,13 +1,26 @@
-// The simulation box and its periodic images (minimum-image convention).
+// The simulation box and its periodic images (minimum-image convention), in D dimensions:
+// DomainOf<2> (`Domain`, the 2D solver's) and DomainOf<3> (`Domain3`).
 #pragma once
 
 #include <cmath>
 
-#include "particula/core/types.hpp"
+#include "particula/core/types3.hpp"
 
 namespace particula {
 
-struct Domain {
+template <int D>
+struct DomainOf;
+
+/// The minimum image of one component d of a separation along an axis of length L.
+PARTICULA_HD real minimum_image(real d, real L) { return d - L * std::nearbyint(d / L); }
+/// A coordinate x mapped into [lo, lo + L).
+PARTICULA_HD real wrap_into(real x, real lo, real L) {
+  x -= L * std::floor((x - lo) / L);
+  return x >= lo + L ? x - L : x;  // guard the round-off case x == hi
+}
+
+template <>
+struct DomainOf<2> {
   Vec2 lo, hi;
   bool periodic_x = false, periodic_y = false;
 
@@ -42,5 +55,32 @@ struct Domain {
     return x;
   }
 };
+using Domain = DomainOf<2>;
+
+template <>
+struct DomainOf<3> {
+  Vec3 lo, hi;
+  bool periodic_x = false, periodic_y = false, periodic_z = false;
+
+  PARTICULA_HD Vec3 size() const { return hi - lo; }
+
+  /// r_i - r_j with the minimum-image convention along periodic axes.
+  PARTICULA_HD Vec3 separation(Vec3 xi, Vec3 xj) const {
+    Vec3 d = xi - xj;
+    if (periodic_x) d.x = minimum_image(d.x, hi.x - lo.x);
+    if (periodic_y) d.y = minimum_image(d.y, hi.y - lo.y);
+    if (periodic_z) d.z = minimum_image(d.z, hi.z - lo.z);
+    return d;
+  }
+
+  /// Maps a position back into [lo, hi) along periodic axes.
+  PARTICULA_HD Vec3 wrap(Vec3 x) const {
+    if (periodic_x) x.x = wrap_into(x.x, lo.x, hi.x - lo.x);
+    if (periodic_y) x.y = wrap_into(x.y, lo.y, hi.y - lo.y);
+    if (periodic_z) x.z = wrap_into(x.z, lo.z, hi.z - lo.z);
+    return x;
+  }
+};
+using Domain3 = DomainOf<3>;
 
 }  // namespace particula
