@@ -77,20 +77,28 @@ Contact wall_contact_exact(const PlacedBody& a, const WallPiece& wall) {
 namespace {
 
 /// 1 / m_t: inverse of the mass that a tangential impulse at the contact point meets on one side
-/// (translation plus the rotation it causes), 0 for a side that forces do not move.
+/// (translation plus the rotation it causes), 0 for a side that forces do not move:
+/// 1/m + (r x t)^2 / I in 2D, 1/m + (r x t) . I^-1 (r x t) in 3D.
 real inverse_tangential_mass(const ContactSide& s, Vec2 r, Vec2 t_hat) {
   if (!(s.mass > 0)) return 0;
   const real arm = cross(r, t_hat);
   return 1 / s.mass + (s.inertia > 0 ? arm * arm / s.inertia : 0);
 }
+real inverse_tangential_mass(const ContactSide3& s, Vec3 r, Vec3 t_hat) {
+  if (!(s.mass > 0)) return 0;
+  const Vec3 arm = cross(r, t_hat);
+  return 1 / s.mass + dot(arm, s.inertia_inv * arm);
+}
 
 }  // namespace
 
-ContactLoad spring_dashpot_load(const Contact& c, const ContactSide& a, const ContactSide& b, Vec2 r_a, Vec2 r_b,
-                                real k, const ContactLaw& law, real dt) {
-  ContactLoad out;
-  const Vec2 n = c.normal;
-  const Vec2 v_rel = relative_velocity(a, b, r_a, r_b);
+template <int D>
+ContactLoadOf<D> spring_dashpot_load(const ContactOf<D>& c, const ContactSideOf<D>& a,
+                                     const ContactSideOf<D>& b, Vec<D> r_a, Vec<D> r_b, real k,
+                                     const ContactLaw& law, real dt) {
+  ContactLoadOf<D> out;
+  const Vec<D> n = c.normal;
+  const Vec<D> v_rel = relative_velocity(a, b, r_a, r_b);
   const real v_n = dot(v_rel, n);  // < 0 when approaching
   const real m_eff = effective_mass(a.mass, b.mass);
   // Normal spring-dashpot on the mid-step overlap (see the header).
@@ -99,9 +107,9 @@ ContactLoad spring_dashpot_load(const Contact& c, const ContactSide& a, const Co
   out.normal = normal_force(k, gamma, overlap + 0.5 * dt * overlap_rate, overlap_rate);
   // Friction: the viscous part gamma_t = m_t / (2 dt) would remove half of the sliding speed in
   // one step (explicit-stable, as close to sticking as an explicit step allows); Coulomb caps it.
-  const Vec2 v_t = v_rel - v_n * n;
+  const Vec<D> v_t = v_rel - v_n * n;
   if (law.friction > 0 && out.normal > 0 && norm(v_t) > 0) {
-    const Vec2 t_hat = v_t / norm(v_t);
+    const Vec<D> t_hat = v_t / norm(v_t);
     const real inv_mt = inverse_tangential_mass(a, r_a, t_hat) + inverse_tangential_mass(b, r_b, t_hat);
     if (inv_mt > 0) out.friction = friction_force(v_t, law.friction, out.normal, 0.5 / (inv_mt * dt));
   }
@@ -109,7 +117,7 @@ ContactLoad spring_dashpot_load(const Contact& c, const ContactSide& a, const Co
   if (law.lubrication) {
     const real R_star = reduced_radius(a.radius, b.radius);
     const real c_lub =
-        lubrication_coefficient(law.viscosity, R_star, c.gap, law.lub_min_gap, law.lub_range, m_eff, dt);
+        lubrication_coefficient<D>(law.viscosity, R_star, c.gap, law.lub_min_gap, law.lub_range, m_eff, dt);
     out.lubrication = (-c_lub * v_n) * n;
   }
   out.force = out.normal * n + out.friction + out.lubrication;
@@ -117,5 +125,12 @@ ContactLoad spring_dashpot_load(const Contact& c, const ContactSide& a, const Co
   out.torque_b = -cross(r_b, out.force);
   return out;
 }
+
+template ContactLoadOf<2> spring_dashpot_load<2>(const ContactOf<2>&, const ContactSideOf<2>&,
+                                                 const ContactSideOf<2>&, Vec2, Vec2, real, const ContactLaw&,
+                                                 real);
+template ContactLoadOf<3> spring_dashpot_load<3>(const ContactOf<3>&, const ContactSideOf<3>&,
+                                                 const ContactSideOf<3>&, Vec3, Vec3, real, const ContactLaw&,
+                                                 real);
 
 }  // namespace particula

@@ -12,7 +12,7 @@
 #include <cmath>
 #include <vector>
 
-#include "particula/core/types.hpp"
+#include "particula/core/types3.hpp"
 #include "particula/geometry/shape.hpp"
 #include "particula/geometry/wall_piece.hpp"
 #include "particula/neighbors/domain.hpp"
@@ -21,13 +21,29 @@ namespace particula {
 
 /// Closest approach between two solids: the surface gap (negative when they overlap), the
 /// unit direction pointing from the other solid towards this one, and the point (world frame)
-/// where the contact force acts: on the line of centres for two circles, otherwise the surface
-/// sample of the sample-based query that came closest.
-struct Contact {
+/// where the contact force acts: on the line of centres for two circles (spheres), otherwise the
+/// surface sample of the sample-based query that came closest. In D dimensions (`Contact` the 2D one).
+template <int D>
+struct ContactOf {
   real gap = 1e300;
-  Vec2 normal;
-  Vec2 point;
+  Vec<D> normal;
+  Vec<D> point;
 };
+using Contact = ContactOf<2>;
+
+/// The type of an angular velocity or a torque: a scalar (about z) in 2D, a vector in 3D.
+template <int D>
+struct AngularOf;
+template <>
+struct AngularOf<2> {
+  using type = real;
+};
+template <>
+struct AngularOf<3> {
+  using type = Vec3;
+};
+template <int D>
+using Angular = typename AngularOf<D>::type;
 
 // ---------------------------------------------------------------------------------------------
 // Geometry
@@ -100,7 +116,9 @@ PARTICULA_HD real contact_duration(real m_eff, real k) { return M_PI * std::sqrt
 inline constexpr real kStepsPerContact = 20;
 
 /// Dashpot coefficient gamma = 2 zeta sqrt(m_eff k) (zeta the damping ratio).
-PARTICULA_HD real dashpot_coefficient(real zeta, real m_eff, real k) { return 2 * zeta * std::sqrt(m_eff * k); }
+PARTICULA_HD real dashpot_coefficient(real zeta, real m_eff, real k) {
+  return 2 * zeta * std::sqrt(m_eff * k);
+}
 
 /// Normal force of the spring-dashpot: F_n = max(0, k delta + gamma d(delta)/dt) for an
 /// overlap delta > 0, never attractive (the dashpot cannot pull separating solids together).
@@ -113,19 +131,30 @@ PARTICULA_HD real normal_force(real k, real gamma, real overlap, real overlap_ra
 /// Regularized Coulomb friction, history-free: F_t = -min(mu |F_n|, gamma_t |v_t|) t_hat with
 /// v_t the tangential relative velocity at the contact point and t_hat = v_t / |v_t|. Below the
 /// Coulomb limit it is a viscous force that brakes the sliding (it stands for sticking).
-PARTICULA_HD Vec2 friction_force(Vec2 v_t, real mu, real Fn, real gamma_t) {
+template <int D>
+PARTICULA_HD Vec<D> friction_force(Vec<D> v_t, real mu, real Fn, real gamma_t) {
   const real s = norm(v_t);
   if (!(s > 0) || !(mu > 0)) return {};
   const real coulomb = mu * std::fabs(Fn), viscous = gamma_t * s;
   return (-(coulomb < viscous ? coulomb : viscous) / s) * v_t;
 }
 
-/// Squeeze-film force per unit depth and unit approach speed between two cylinders (or a
-/// cylinder and a plane, R* = R) at gap g (lubrication theory, docs/method.md, "Lubrication"):
-///   F = (3 pi / 2) mu U_n (2 R* / g)^(3/2),  R* = R_a R_b / (R_a + R_b).
-PARTICULA_HD real squeeze_film_coefficient(real mu, real R_star, real gap) {
+/// Squeeze-film force per unit approach speed at gap g between two curved surfaces of reduced
+/// radius R* = R_a R_b / (R_a + R_b) (a plane: R* = R), from lubrication theory (docs/method.md,
+/// "Lubrication"): in 2D between two cylinders, per unit depth,
+///   F = (3 pi / 2) mu U_n (2 R* / g)^(3/2),
+/// in 3D between two spheres (Reynolds),
+///   F = 6 pi mu U_n R*^2 / g.
+template <int D = 2>
+PARTICULA_HD real squeeze_film_coefficient(real mu, real R_star, real gap);
+template <>
+PARTICULA_HD real squeeze_film_coefficient<2>(real mu, real R_star, real gap) {
   const real r = 2 * R_star / gap;
   return 1.5 * M_PI * mu * r * std::sqrt(r);
+}
+template <>
+PARTICULA_HD real squeeze_film_coefficient<3>(real mu, real R_star, real gap) {
+  return 6 * M_PI * mu * R_star * R_star / gap;
 }
 
 /// The lubrication correction added to the SPH force, per unit approach speed:
@@ -135,11 +164,13 @@ PARTICULA_HD real squeeze_film_coefficient(real mu, real R_star, real gap) {
 /// analytic force supplies the rest. Clipped to c dt / m_eff <= 0.5 so that the explicit
 /// step, which applies the force of the start-of-step velocity for the whole step, removes at
 /// most half of the approach speed (forward Euler on dU/dt = -c U / m: stable and monotone).
-PARTICULA_HD real lubrication_coefficient(real mu, real R_star, real gap, real g_min, real g_range, real m_eff,
-                                          real dt) {
+template <int D = 2>
+PARTICULA_HD real lubrication_coefficient(real mu, real R_star, real gap, real g_min, real g_range,
+                                          real m_eff, real dt) {
   if (!(gap < g_range) || !(R_star > 0) || !(mu > 0)) return 0;
   const real g_eff = gap > g_min ? gap : g_min;
-  const real c = squeeze_film_coefficient(mu, R_star, g_eff) - squeeze_film_coefficient(mu, R_star, g_range);
+  const real c =
+      squeeze_film_coefficient<D>(mu, R_star, g_eff) - squeeze_film_coefficient<D>(mu, R_star, g_range);
   const real c_max = 0.5 * m_eff / dt;
   return c < c_max ? c : c_max;
 }
@@ -148,27 +179,41 @@ PARTICULA_HD real lubrication_coefficient(real mu, real R_star, real gap, real g
 /// plane (a wall): R* = R_a.
 PARTICULA_HD real reduced_radius(real R_a, real R_b) { return R_b > 0 ? R_a * R_b / (R_a + R_b) : R_a; }
 
-/// One side of a contact as the force law sees it.
-struct ContactSide {
-  Vec2 pos;          // centre of mass (for a wall: any point; it does not turn)
-  Vec2 vel;          // velocity of `pos`
+/// One side of a contact as the force law sees it, in D dimensions (`ContactSide` the 2D one).
+template <int D>
+struct ContactSideOf;
+template <>
+struct ContactSideOf<2> {
+  Vec2 pos;  // centre of mass (for a wall: any point; it does not turn)
+  Vec2 vel;  // velocity of `pos`
   real omega = 0;
   real mass = 0;     // 0: not moved by forces (a wall, a fixed or prescribed body)
   real inertia = 0;  // moment of inertia per unit depth
   real radius = 0;   // equivalent radius for lubrication; 0 for a wall (a plane)
 };
+using ContactSide = ContactSideOf<2>;
+template <>
+struct ContactSideOf<3> {
+  Vec3 pos, vel, omega;  // as in 2D, the angular velocity a vector
+  real mass = 0;
+  Mat3 inertia_inv;  // the inverse of the world-frame inertia tensor (0 with mass 0)
+  real radius = 0;
+};
+using ContactSide3 = ContactSideOf<3>;
 
 /// Velocity of side a relative to side b at the contact point (r_a, r_b: the point relative to
 /// each side's centre): (v_a + Omega_a x r_a) - (v_b + Omega_b x r_b).
-PARTICULA_HD Vec2 relative_velocity(const ContactSide& a, const ContactSide& b, Vec2 r_a, Vec2 r_b) {
+template <int D>
+PARTICULA_HD Vec<D> relative_velocity(const ContactSideOf<D>& a, const ContactSideOf<D>& b, Vec<D> r_a,
+                                      Vec<D> r_b) {
   return (a.vel + cross(a.omega, r_a)) - (b.vel + cross(b.omega, r_b));
 }
 
 /// Parameters of the spring-dashpot law that do not change during a run.
 struct ContactLaw {
-  real delta_c = 0;      // contact distance: the spring acts for gap < delta_c
-  real zeta = 0;         // damping ratio, from the restitution
-  real friction = 0;     // Coulomb coefficient mu
+  real delta_c = 0;   // contact distance: the spring acts for gap < delta_c
+  real zeta = 0;      // damping ratio, from the restitution
+  real friction = 0;  // Coulomb coefficient mu
   bool lubrication = false;
   real viscosity = 0;    // dynamic viscosity of the fluid (lubrication)
   real lub_range = 0;    // g_range
@@ -176,13 +221,15 @@ struct ContactLaw {
 };
 
 /// The contact force on side a (side b gets the opposite), its parts and where it acts.
-struct ContactLoad {
-  Vec2 force;        // total on a: normal + friction + lubrication
-  real normal = 0;   // F_n of the spring-dashpot (>= 0)
-  Vec2 friction;
-  Vec2 lubrication;
-  real torque_a = 0, torque_b = 0;  // about each side's centre, from the force at the contact point
+template <int D>
+struct ContactLoadOf {
+  Vec<D> force;     // total on a: normal + friction + lubrication
+  real normal = 0;  // F_n of the spring-dashpot (>= 0)
+  Vec<D> friction;
+  Vec<D> lubrication;
+  Angular<D> torque_a{}, torque_b{};  // about each side's centre, from the force at the contact point
 };
+using ContactLoad = ContactLoadOf<2>;
 
 /// The spring-dashpot load of one contact over a step dt. r_a, r_b: contact point relative to
 /// each side's centre (minimum image). The overlap is delta = delta_c - gap and its rate
@@ -191,7 +238,11 @@ struct ContactLoad {
 /// applies one force for the whole step, and the mid-step overlap makes that update conserve
 /// the spring's energy (the start-of-step overlap adds (omega dt)^2 / 4 of it per step, 13 % of
 /// the rebound speed over a contact at dt = t_c / 20). k: the stiffness of this contact.
-ContactLoad spring_dashpot_load(const Contact& c, const ContactSide& a, const ContactSide& b, Vec2 r_a, Vec2 r_b,
-                                real k, const ContactLaw& law, real dt);
+/// The same law in 2D and 3D; only the squeeze film (cylinders or spheres) and the tangential
+/// mass (a scalar or a tensor inertia) differ, through the types.
+template <int D>
+ContactLoadOf<D> spring_dashpot_load(const ContactOf<D>& c, const ContactSideOf<D>& a,
+                                     const ContactSideOf<D>& b, Vec<D> r_a, Vec<D> r_b, real k,
+                                     const ContactLaw& law, real dt);
 
 }  // namespace particula
