@@ -100,15 +100,15 @@ TEST(WallPressure, ExtrapolationIsExactForAHydrostaticField) {
 TEST(WallPressure, ConditioningGuardRejectsCancellingDenominators) {
   // A flat wall: every term of the P.20 denominator has the same sign.
   WallPressureSums flat;
-  for (real k : {0.4, 0.3, 0.2, 0.05}) wall_pressure_pair(flat, {0, k}, {0, 1}, 0, 1, true);
+  for (real k : {0.4, 0.3, 0.2, 0.05}) wall_pressure_pair(flat, Vec2{0, k}, Vec2{0, 1}, 0, 1, true);
   EXPECT_TRUE(wall_pressure_well_conditioned(flat));
   // Fluid on both sides of the normal: the terms cancel, P_i = num/den would amplify.
   WallPressureSums sharp;
-  for (real k : {0.4, -0.3, 0.2, -0.25}) wall_pressure_pair(sharp, {0, k}, {0, 1}, 0, 1, true);
+  for (real k : {0.4, -0.3, 0.2, -0.25}) wall_pressure_pair(sharp, Vec2{0, k}, Vec2{0, 1}, 0, 1, true);
   EXPECT_FALSE(wall_pressure_well_conditioned(sharp));
   // Only boundary neighbours: never solved, whatever the sums.
   WallPressureSums walls_only;
-  wall_pressure_pair(walls_only, {0, 1}, {0, 1}, 0, 1, false);
+  wall_pressure_pair(walls_only, Vec2{0, 1}, Vec2{0, 1}, 0, 1, false);
   EXPECT_FALSE(wall_pressure_well_conditioned(walls_only));
 }
 

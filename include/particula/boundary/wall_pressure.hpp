@@ -4,13 +4,15 @@
 
 #include <cmath>
 
-#include "particula/core/types.hpp"
+#include "particula/core/types3.hpp"
 
 namespace particula {
 
 /// P.18: n_i = sum_j w_j gradW_ij / |sum_j w_j gradW_ij|, pointing from the solid into the
-/// fluid (gradW_ij points from i towards j). Returns false when the sum vanishes.
-PARTICULA_HD bool kernel_normal(Vec2 sum_w_gradW, Vec2& n) {
+/// fluid (gradW_ij points from i towards j). Returns false when the sum vanishes. The functions
+/// of this file are written once for D = 2 and 3.
+template <int D>
+PARTICULA_HD bool kernel_normal(Vec<D> sum_w_gradW, Vec<D>& n) {
   const real len = norm(sum_w_gradW);
   if (!(len > 0)) return false;
   n = sum_w_gradW / len;
@@ -25,7 +27,9 @@ struct WallPressureSums {
   int fluid_neighbors = 0;
 };
 
-PARTICULA_HD void wall_pressure_pair(WallPressureSums& s, Vec2 wBgW, Vec2 n, real p_j, real rhobar, bool j_is_fluid) {
+template <int D>
+PARTICULA_HD void wall_pressure_pair(WallPressureSums& s, Vec<D> wBgW, Vec<D> n, real p_j, real rhobar,
+                                     bool j_is_fluid) {
   const real k = dot(wBgW, n) / rhobar;
   s.num += k * p_j;
   s.den += k;
@@ -37,7 +41,9 @@ PARTICULA_HD void wall_pressure_pair(WallPressureSums& s, Vec2 wBgW, Vec2 n, rea
 /// particle's acceleration, nu<lap V>_i = (div tau)/rho evaluated at i, and g the gravity kept
 /// in the fluid (zero when P is the dynamic pressure). Returns false (P untouched) when the
 /// denominator vanishes, e.g. no fluid neighbour: the caller keeps the previous pressure.
-PARTICULA_HD bool wall_pressure(const WallPressureSums& s, Vec2 a, Vec2 nu_lap_v, Vec2 g, Vec2 n, real& p) {
+template <int D>
+PARTICULA_HD bool wall_pressure(const WallPressureSums& s, Vec<D> a, Vec<D> nu_lap_v, Vec<D> g, Vec<D> n,
+                                real& p) {
   if (s.fluid_neighbors == 0 || !(s.den > 1e-6 * s.scale)) return false;
   p = (s.num + dot(a - nu_lap_v - g, n)) / s.den;
   return true;
@@ -111,8 +117,9 @@ struct WallExtrapolationSums {
   real num = 0, den = 0;
 };
 
-PARTICULA_HD void wall_extrapolation_pair(WallExtrapolationSums& s, real W, real p_j, real rho_j, Vec2 x_ji,
-                                          Vec2 balance) {
+template <int D>
+PARTICULA_HD void wall_extrapolation_pair(WallExtrapolationSums& s, real W, real p_j, real rho_j, Vec<D> x_ji,
+                                          Vec<D> balance) {
   s.num += W * (p_j - rho_j * dot(x_ji, balance));
   s.den += W;
 }
