@@ -116,6 +116,18 @@ PARTICULA_HD bool inverse(const Mat3& a, Mat3& a_inv, real rel_tol = 1e-14) {
   return true;
 }
 
+/// The identity matrix of dimension D.
+template <int D>
+PARTICULA_HD Mat<D> unit_matrix();
+template <>
+PARTICULA_HD Mat2 unit_matrix<2>() {
+  return identity2();
+}
+template <>
+PARTICULA_HD Mat3 unit_matrix<3>() {
+  return identity3();
+}
+
 /// A unit quaternion q = (w; x, y, z) = (cos(theta/2); sin(theta/2) axis): the rotation by theta
 /// about `axis` that takes a body-frame vector to the world frame, v_world = q v q*.
 struct Quat {
