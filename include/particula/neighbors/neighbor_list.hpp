@@ -22,6 +22,21 @@ namespace particula {
 template <int D>
 struct GridGeometryOf;
 
+/// The n cells of `cells` (in visit order) as runs of consecutive indices: run r is the cells
+/// first[r] .. last[r]. Returns the number of runs.
+PARTICULA_HD int cell_runs(const int* cells, int n, int* first, int* last) {
+  int runs = 0;
+  for (int m = 0; m < n; ++m) {
+    if (runs > 0 && cells[m] == last[runs - 1] + 1) {
+      last[runs - 1] = cells[m];
+    } else {
+      first[runs] = last[runs] = cells[m];
+      ++runs;
+    }
+  }
+  return runs;
+}
+
 template <>
 struct GridGeometryOf<2> {
   static constexpr int kCells = 9;
@@ -70,17 +85,7 @@ struct GridGeometryOf<2> {
   /// particles instead of 9.
   PARTICULA_HD int neighbor_cell_runs(int c, int first[9], int last[9]) const {
     int cells[9];
-    const int n = neighbor_cells(c, cells);
-    int runs = 0;
-    for (int m = 0; m < n; ++m) {
-      if (runs > 0 && cells[m] == last[runs - 1] + 1) {
-        last[runs - 1] = cells[m];
-      } else {
-        first[runs] = last[runs] = cells[m];
-        ++runs;
-      }
-    }
-    return runs;
+    return cell_runs(cells, neighbor_cells(c, cells), first, last);
   }
 };
 using GridGeometry = GridGeometryOf<2>;
@@ -138,17 +143,7 @@ struct GridGeometryOf<3> {
   /// periodic wrap splits one).
   PARTICULA_HD int neighbor_cell_runs(int c, int first[27], int last[27]) const {
     int cells[27];
-    const int n = neighbor_cells(c, cells);
-    int runs = 0;
-    for (int m = 0; m < n; ++m) {
-      if (runs > 0 && cells[m] == last[runs - 1] + 1) {
-        last[runs - 1] = cells[m];
-      } else {
-        first[runs] = last[runs] = cells[m];
-        ++runs;
-      }
-    }
-    return runs;
+    return cell_runs(cells, neighbor_cells(c, cells), first, last);
   }
 };
 using GridGeometry3 = GridGeometryOf<3>;
