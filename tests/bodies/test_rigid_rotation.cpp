@@ -14,13 +14,7 @@ namespace {
 
 Vec3 unit(Vec3 v) { return v / norm(v); }
 
-real max_abs_difference(const Mat3& a, const Mat3& b) {
-  const Mat3 d = a - b;
-  const real e[] = {d.xx, d.xy, d.xz, d.yx, d.yy, d.yz, d.zx, d.zy, d.zz};
-  real m = 0;
-  for (const real x : e) m = std::fmax(m, std::fabs(x));
-  return m;
-}
+real max_abs_difference(const Mat3& a, const Mat3& b) { return max_abs_entry(a - b); }
 
 /// A body whose principal axes are not its frame's axes (as a mesh read from a file gives):
 /// principal moments 1, 2, 3 (kg m^2), axes turned by 0.9 rad about (1, -1, 2).

@@ -14,13 +14,7 @@ using namespace particula;
 
 namespace {
 
-real max_abs_difference(const Mat3& a, const Mat3& b) {
-  const Mat3 d = a - b;
-  const real e[] = {d.xx, d.xy, d.xz, d.yx, d.yy, d.yz, d.zx, d.zy, d.zz};
-  real m = 0;
-  for (const real x : e) m = std::fmax(m, std::fabs(x));
-  return m;
-}
+real max_abs_difference(const Mat3& a, const Mat3& b) { return max_abs_entry(a - b); }
 
 /// The 12 triangles of the box [lo, hi], counter-clockwise seen from outside.
 std::vector<TriangleMesh::Triangle> box_triangles(Vec3 lo, Vec3 hi) {

@@ -100,6 +100,13 @@ PARTICULA_HD real ddot(const Mat3& a, const Mat3& b) {
 }
 /// Symmetric part (A + A^T)/2.
 PARTICULA_HD Mat3 sym(const Mat3& a) { return 0.5 * (a + transpose(a)); }
+/// The largest magnitude of an entry, max_kl |A_kl|.
+PARTICULA_HD real max_abs_entry(const Mat3& a) {
+  const real e[9] = {a.xx, a.xy, a.xz, a.yx, a.yy, a.yz, a.zx, a.zy, a.zz};
+  real m = 0;
+  for (const real x : e) m = std::fmax(m, std::fabs(x));
+  return m;
+}
 /// The inverse by cofactors; false (m_inv untouched) when |det| is not above rel_tol times the
 /// cube of the largest entry.
 PARTICULA_HD bool inverse(const Mat3& a, Mat3& a_inv, real rel_tol = 1e-14) {
@@ -107,10 +114,7 @@ PARTICULA_HD bool inverse(const Mat3& a, Mat3& a_inv, real rel_tol = 1e-14) {
                     a.xz * a.zy - a.xy * a.zz, a.xx * a.zz - a.xz * a.zx, a.xy * a.zx - a.xx * a.zy,
                     a.xy * a.yz - a.xz * a.yy, a.xz * a.yx - a.xx * a.yz, a.xx * a.yy - a.xy * a.yx};
   const real d = a.xx * cof.xx + a.xy * cof.xy + a.xz * cof.xz;
-  const real s = std::fmax(
-      std::fmax(std::fmax(std::fabs(a.xx), std::fabs(a.xy)), std::fmax(std::fabs(a.xz), std::fabs(a.yx))),
-      std::fmax(std::fmax(std::fabs(a.yy), std::fabs(a.yz)),
-                std::fmax(std::fmax(std::fabs(a.zx), std::fabs(a.zy)), std::fabs(a.zz))));
+  const real s = max_abs_entry(a);
   if (!(std::fabs(d) > rel_tol * s * s * s)) return false;
   a_inv = (1 / d) * transpose(cof);
   return true;
