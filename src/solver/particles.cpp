@@ -2,7 +2,8 @@
 
 namespace particula {
 
-void Particles::resize(std::size_t n) {
+template <int D>
+void ParticlesOf<D>::resize(std::size_t n) {
   x.resize(n);
   v.resize(n);
   rho.resize(n);
@@ -13,7 +14,8 @@ void Particles::resize(std::size_t n) {
   id.resize(n);
 }
 
-void Particles::resize_boundary(std::size_t nb) {
+template <int D>
+void ParticlesOf<D>::resize_boundary(std::size_t nb) {
   n_boundary = nb;
   local.resize(nb);
   normal_local.resize(nb);
@@ -23,5 +25,8 @@ void Particles::resize_boundary(std::size_t nb) {
   wedge.resize(nb, 0);
   source.resize(nb, -1);
 }
+
+template struct ParticlesOf<2>;
+template struct ParticlesOf<3>;
 
 }  // namespace particula

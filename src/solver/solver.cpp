@@ -97,85 +97,23 @@ void Solver::group_loads() {
     bodies_.surface_loads(*backend_);
 }
 
-StageParams Solver::stage_params(real dt) const {
-  StageParams s;
-  s.dt = dt;
-  s.g_dt = prm_.rhie_chow_factor * dt;
-  s.nu = prm_.nu;
-  s.f = prm_.body_force + (prm_.gravity_in_fluid ? prm_.gravity : Vec2{});
-  s.rho0 = prm_.rho0;
-  s.c = prm_.c;
-  s.p0 = prm_.p0;
-  // kappa = alpha c h (docs/method.md, "Odd-even velocity damping")
-  s.kappa = prm_.odd_even_damping * prm_.c * prm_.h;
-  s.void_distance = kVoidDistance * prm_.d0;
-  s.single_layer = prm_.single_layer;
-  return s;
-}
+StageParams Solver::stage_params(real dt) const { return particula::stage_params<2>(prm_, dt); }
 
-HealthLimits Solver::health_limits() const {
-  HealthLimits l;
-  l.rho_lo = prm_.rho_min_ratio * prm_.rho0;
-  l.rho_hi = prm_.rho_max_ratio * prm_.rho0;
-  l.h = prm_.h;
-  l.domain = domain_;
-  return l;
-}
+HealthLimits Solver::health_limits() const { return particula::health_limits<2>(prm_, domain_); }
 
-const char* step_limit_name(StepLimit l) {
-  switch (l) {
-    case StepLimit::Acoustic:
-      return "acoustic";
-    case StepLimit::Viscous:
-      return "viscous";
-    case StepLimit::DtMax:
-      return "dt_max";
-    case StepLimit::BodyForce:
-      return "body_force";
-    case StepLimit::Contact:
-      return "contact";
-    case StepLimit::Landing:
-      return "output_time";
-  }
-  return "";
-}
-
-Solver::StableStep Solver::stable_step() const {
-  const real dlist = backend_->min_distance();
-  const real dmin = dlist > 0 && std::isfinite(dlist) ? dlist : prm_.d0;
-  const real vmax = backend_->max_speed();
-  StableStep st{prm_.cfl * dmin / (prm_.c + vmax), StepLimit::Acoustic};  // P.30: Courant condition
-  const auto tighten = [&st](real dt, StepLimit why) {
-    if (dt < st.dt) st = {dt, why};
-  };
-  if (prm_.nu > 0) tighten(prm_.cfl * dmin * dmin / prm_.nu, StepLimit::Viscous);  // P.31: viscous diffusion
-  if (prm_.dt_max > 0) tighten(prm_.dt_max, StepLimit::DtMax);
+StableStep Solver::stable_step() const {
+  StableStep st = fluid_stable_step<2>(prm_, backend_->min_distance(), backend_->max_speed());
   const real contact_dt = contacts_.dt_limit();
-  if (contact_dt > 0) tighten(contact_dt, StepLimit::Contact);  // t_c / 20 of the contacts
-  tighten(body_force_dt(), StepLimit::BodyForce);
+  if (contact_dt > 0) st.tighten(contact_dt, StepLimit::Contact);  // t_c / 20 of the contacts
+  st.tighten(body_force_dt(), StepLimit::BodyForce);
   return st;
 }
 
 real Solver::stable_dt() const { return stable_step().dt; }
 
-real Solver::body_force_dt() const {
-  // Monaghan's force condition dt <= 0.25 sqrt(h / |f|) for the acceleration f every fluid
-  // particle feels (body force, gravity kept in the fluid): without it a strong body force on a
-  // fluid at rest moved particles by more than h in one step (gravity 1e6 m/s^2: exit 3 at step
-  // 1, the Courant condition of a fluid at rest knowing nothing of f).
-  Vec2 f = prm_.body_force;
-  if (prm_.gravity_in_fluid) f += prm_.gravity;
-  const real a = norm(f);
-  return a > 0 ? 0.25 * std::sqrt(prm_.h / a) : std::numeric_limits<real>::infinity();
-}
+real Solver::body_force_dt() const { return particula::body_force_dt<2>(prm_); }
 
-real Solver::case_dt() const {
-  // P.30 at the particle spacing and sound speed, P.31 at d0, dt_max and the force condition.
-  real dt_scale = prm_.cfl * prm_.d0 / prm_.c;
-  if (prm_.nu > 0) dt_scale = std::min(dt_scale, prm_.cfl * prm_.d0 * prm_.d0 / prm_.nu);
-  if (prm_.dt_max > 0) dt_scale = std::min(dt_scale, prm_.dt_max);
-  return std::min(dt_scale, body_force_dt());
-}
+real Solver::case_dt() const { return particula::case_dt<2>(prm_); }
 
 std::optional<Failure> Solver::time_step_collapse(real dt) const {
   const real dt_scale = case_dt();

@@ -8,59 +8,19 @@
 #include <cmath>
 #include <vector>
 
-#include "box3.hpp"
-#include "particula/neighbors/neighbor_list.hpp"
-#include "particula/solver/geometry_sweep.hpp"
+#include "box3_sweep.hpp"
 
 using namespace particula;
 using namespace box3;
 
 TEST(GeometrySweep3, StoredWeightsAreExactForLinearGradientsAndQuadraticLaplacians) {
-  const real d0 = 0.1, h = 2.6 * d0;
-  const Cloud cloud = perturbed_box(d0, h);
-  // the boundary block first, as the solver orders its particles
-  std::vector<Vec3> x, normal;
-  std::vector<real> vol;
-  std::vector<Kind> kind;
-  std::vector<std::int32_t> group;
-  std::vector<Where> where;
-  for (const bool walls : {true, false})
-    for (std::size_t i = 0; i < cloud.x.size(); ++i) {
-      if ((cloud.where[i] == Where::Wall) != walls) continue;
-      x.push_back(cloud.x[i]);
-      normal.push_back(cloud.normal[i]);
-      vol.push_back(cloud.w[i]);
-      kind.push_back(walls ? Kind::Boundary : Kind::Fluid);
-      group.push_back(walls ? 0 : -1);
-      where.push_back(cloud.where[i]);
-    }
-  std::size_t nb = 0;
-  while (nb < kind.size() && kind[nb] == Kind::Boundary) ++nb;
-  Domain3 domain;
-  domain.lo = {0, 0, 0};
-  domain.hi = kBoxHi;
-  const Wendland<3> kernel(h);
-  CellGrid3 grid;
-  grid.setup(domain, h, h);
-  NeighborList list;
-  build_neighbor_list(x, domain, kernel, grid, list);
-
-  SweepContextOf<3> c;
-  c.domain = domain;
-  c.kernel = kernel;
-  c.start = list.start.data();
-  c.j = list.j.data();
-  c.n = x.size();
-  c.nb = nb;
-  c.x = x.data();
-  c.vol = vol.data();
-  c.kind = kind.data();
-  c.group = group.data();
-  c.normal = normal.data();
-  std::vector<Vec3> grad_w(list.pair_count());
-  std::vector<real> lap_w(list.pair_count());
-  std::vector<GeometryAtOf<3>> geo(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) geo[i] = geometry_at(c, i, d0, grad_w.data(), lap_w.data());
+  const BoxSweep box(0.1, 2.6 * 0.1);
+  const std::vector<Vec3>&x = box.x, &normal = box.normal, &grad_w = box.grad_w;
+  const std::vector<real>& lap_w = box.lap_w;
+  const std::vector<Where>& where = box.where;
+  const std::vector<GeometryAtOf<3>>& geo = box.geo;
+  const NeighborList& list = box.list;
+  const std::size_t nb = box.nb;
 
   const Vec3 g{2.5, -1.75, 0.6};
   const Mat3 H{1.3, 0.4, -0.2, 0.4, -0.7, 0.5, -0.2, 0.5, 2.1};
@@ -78,7 +38,9 @@ TEST(GeometrySweep3, StoredWeightsAreExactForLinearGradientsAndQuadraticLaplacia
       lap += lap_w[k] * (u(x[i]) - u(x[j]));
     }
     EXPECT_LT(norm(grad - g) / norm(g), 1e-10) << "particle " << i;
-    if (i >= nb) EXPECT_NEAR(lap, trace(H), 1e-8 * std::fabs(trace(H))) << "particle " << i;
+    if (i >= nb) {
+      EXPECT_NEAR(lap, trace(H), 1e-8 * std::fabs(trace(H))) << "particle " << i;
+    }
     if (i < nb &&
         std::fabs(std::fabs(normal[i].x) + std::fabs(normal[i].y) + std::fabs(normal[i].z) - 1) < 1e-12) {
       EXPECT_GT(dot(geo[i].normal_sum, normal[i]), 0) << "particle " << i;

@@ -25,6 +25,7 @@
 #include <cstdint>
 
 #include "particula/core/types.hpp"
+#include "particula/core/types3.hpp"
 #include "particula/neighbors/domain.hpp"
 
 namespace particula {
@@ -65,35 +66,43 @@ PARTICULA_HD void offer_surface(NearestSurfaces& s, std::uint32_t j, std::int32_
 /// wall ends at a corner), or at a convex corner of the solid (a polygon body's vertex, the
 /// inward corner of an L-shaped container, where the fluid wraps round more than 180 degrees)
 /// the two sides that meet there.
-struct SurfaceTangent {
-  Vec2 x, n, v;    // position, outward unit normal (into the fluid; the bisector at a corner), velocity
+template <int D>
+struct SurfaceTangentOf {
+  Vec<D> x, n, v;    // position, outward unit normal (into the fluid; the bisector at a corner), velocity
   real wedge = 0;  // at a convex corner of the solid: half the angle between the two sides' normals
   real reach = 0;  // half-length of the stretch of tangent line that stands for the surface (0: unbounded)
 };
+using SurfaceTangent = SurfaceTangentOf<2>;
 
 /// The boundary arrays the surfaces are gathered from (Particles' boundary block); v may be null.
-struct SurfaceArrays {
-  const Vec2* x = nullptr;
-  const Vec2* n = nullptr;
+template <int D>
+struct SurfaceArraysOf {
+  const Vec<D>* x = nullptr;
+  const Vec<D>* n = nullptr;
   const real* wedge = nullptr;
   const real* ds = nullptr;
-  const Vec2* v = nullptr;
+  const Vec<D>* v = nullptr;
 };
+using SurfaceArrays = SurfaceArraysOf<2>;
 
 /// Up to two surfaces near a fluid particle (see NearestSurfaces).
-struct NearSurfaces {
+template <int D>
+struct NearSurfacesOf {
   int count = 0;
-  SurfaceTangent s[2];
+  SurfaceTangentOf<D> s[2];
 };
+using NearSurfaces = NearSurfacesOf<2>;
 
 /// The surface of surface particle j: its tangent line reaching one surface spacing ds_j.
-PARTICULA_HD SurfaceTangent surface_at(const SurfaceArrays& s, std::uint32_t j) {
-  return SurfaceTangent{s.x[j], s.n[j], s.v ? s.v[j] : Vec2{}, s.wedge[j], s.ds[j]};
+template <int D>
+PARTICULA_HD SurfaceTangentOf<D> surface_at(const SurfaceArraysOf<D>& s, std::uint32_t j) {
+  return SurfaceTangentOf<D>{s.x[j], s.n[j], s.v ? s.v[j] : Vec<D>{}, s.wedge[j], s.ds[j]};
 }
 
 /// The surfaces of slots a and b.
-PARTICULA_HD NearSurfaces gather_surfaces(std::uint32_t a, std::uint32_t b, const SurfaceArrays& s) {
-  NearSurfaces out;
+template <int D>
+PARTICULA_HD NearSurfacesOf<D> gather_surfaces(std::uint32_t a, std::uint32_t b, const SurfaceArraysOf<D>& s) {
+  NearSurfacesOf<D> out;
   if (a != kNoSurface) out.s[out.count++] = surface_at(s, a);
   if (b != kNoSurface) out.s[out.count++] = surface_at(s, b);
   return out;
@@ -145,9 +154,42 @@ PARTICULA_HD real surface_distance(const Domain& domain, Vec2 x, const SurfaceTa
   return d1 >= d2 ? d1 : d2;
 }
 
+/// The same in 3D: the tangent plane at x_s stands for the surface within the disc of radius
+/// `reach` round x_s (beyond it, the distance from the disc's rim at the foot's side, away =
+/// (x - e) / |x - e|). At a convex edge or vertex of the solid (wedge > 0) the solid is taken
+/// as the cone round -n whose surface makes the angle 90 degrees + wedge with n, the one
+/// rotationally symmetric set with the 2D wedge's normal cone: |r| within `wedge` of n, else
+/// r . n1 with n1 = n cos(wedge) + t sin(wedge) and t the direction of r's tangential part (in
+/// the plane of n and r this is the 2D side on r's side, max(r . n1, r . n2) above).
+PARTICULA_HD real surface_distance(const DomainOf<3>& domain, Vec3 x, const SurfaceTangentOf<3>& s, Vec3& away) {
+  const Vec3 r = domain.separation(x, s.x);
+  const real dn = dot(r, s.n);
+  const Vec3 tangential = r - dn * s.n;
+  const real along = norm(tangential);
+  away = s.n;
+  if (!(s.wedge > 0)) {
+    if (!(s.reach > 0) || along <= s.reach) return dn;
+    const Vec3 from_end = r - (s.reach / along) * tangential;
+    const real len = norm(from_end);
+    away = from_end / len;
+    return len;
+  }
+  const real cw = std::cos(s.wedge), sw = std::sin(s.wedge);
+  const real len = norm(r);
+  if (len > 0 && dn >= cw * len) {  // within the normal cone
+    away = r / len;
+    return len;
+  }
+  // r along -n (no tangential part): every side is as near; take one perpendicular to n
+  const Vec3 t = along > 0 ? tangential / along : any_perpendicular(s.n);
+  away = cw * s.n + sw * t;
+  return dot(r, away);
+}
+
 /// surface_distance without the direction.
-PARTICULA_HD real surface_distance(const Domain& domain, Vec2 x, const SurfaceTangent& s) {
-  Vec2 away;
+template <int D>
+PARTICULA_HD real surface_distance(const DomainOf<D>& domain, Vec<D> x, const SurfaceTangentOf<D>& s) {
+  Vec<D> away;
   return surface_distance(domain, x, s, away);
 }
 
@@ -155,13 +197,17 @@ PARTICULA_HD real surface_distance(const Domain& domain, Vec2 x, const SurfaceTa
 enum class GuardOutcome : std::uint8_t { None = 0, Pushed = 1, Gap = 2 };
 
 /// Two surfaces face each other across a gap (normals within 60 degrees of opposite).
-PARTICULA_HD bool facing(const SurfaceTangent& a, const SurfaceTangent& b) { return dot(a.n, b.n) < -0.5; }
+template <int D>
+PARTICULA_HD bool facing(const SurfaceTangentOf<D>& a, const SurfaceTangentOf<D>& b) {
+  return dot(a.n, b.n) < -0.5;
+}
 
 /// The surface guard for one fluid particle (see the header comment). `keep` = d_keep in metres.
-PARTICULA_HD GuardOutcome guard_surfaces(const NearSurfaces& ns, real keep, const Domain& domain, Vec2& x, Vec2& v) {
+template <int D>
+PARTICULA_HD GuardOutcome guard_surfaces(const NearSurfacesOf<D>& ns, real keep, const DomainOf<D>& domain, Vec<D>& x, Vec<D>& v) {
   if (ns.count == 0 || !(keep > 0)) return GuardOutcome::None;
   if (ns.count == 2 && facing(ns.s[0], ns.s[1])) {
-    const SurfaceTangent &a = ns.s[0], &b = ns.s[1];
+    const SurfaceTangentOf<D> &a = ns.s[0], &b = ns.s[1];
     const real da = surface_distance(domain, x, a), db = surface_distance(domain, x, b);
     if (da + db < 2 * keep) {
       // A closing gap: midway between the two (measured along a's normal), moving with them.
@@ -173,8 +219,8 @@ PARTICULA_HD GuardOutcome guard_surfaces(const NearSurfaces& ns, real keep, cons
   }
   GuardOutcome out = GuardOutcome::None;
   for (int k = 0; k < ns.count; ++k) {
-    const SurfaceTangent& s = ns.s[k];
-    Vec2 away;
+    const SurfaceTangentOf<D>& s = ns.s[k];
+    Vec<D> away;
     const real d = surface_distance(domain, x, s, away);
     if (d >= keep) continue;
     x = domain.wrap(x + (keep - d) * away);
@@ -190,7 +236,8 @@ PARTICULA_HD GuardOutcome guard_surfaces(const NearSurfaces& ns, real keep, cons
 /// `film_gap`, the squeeze flow that drains (or fills) the gap is not resolved by one or two
 /// particle layers, and the particle's volume change is left out of the continuity equation in
 /// proportion: 0 for a gap of film_gap or more, 1 for film_gap / 2 or less, linear between.
-PARTICULA_HD real film_fraction(const NearSurfaces& ns, real film_gap, const Domain& domain, Vec2 x) {
+template <int D>
+PARTICULA_HD real film_fraction(const NearSurfacesOf<D>& ns, real film_gap, const DomainOf<D>& domain, Vec<D> x) {
   if (ns.count < 2 || !(film_gap > 0) || !facing(ns.s[0], ns.s[1])) return 0;
   const real gap = surface_distance(domain, x, ns.s[0]) + surface_distance(domain, x, ns.s[1]);
   const real f = (film_gap - gap) / (0.5 * film_gap);
@@ -212,10 +259,11 @@ PARTICULA_HD bool isolated(real others_fluid_support, real one_neighbour_support
 /// Particle shifting never moves a particle towards a surface it is within `range` of (one
 /// particle spacing): the shift's component into that surface (against surface_distance's
 /// `away`) is removed.
-PARTICULA_HD Vec2 limit_shift_at_surfaces(Vec2 dr, const NearSurfaces& ns, real range, const Domain& domain, Vec2 x) {
+template <int D>
+PARTICULA_HD Vec<D> limit_shift_at_surfaces(Vec<D> dr, const NearSurfacesOf<D>& ns, real range, const DomainOf<D>& domain, Vec<D> x) {
   for (int k = 0; k < ns.count; ++k) {
-    const SurfaceTangent& s = ns.s[k];
-    Vec2 away;
+    const SurfaceTangentOf<D>& s = ns.s[k];
+    Vec<D> away;
     const real d = surface_distance(domain, x, s, away);
     const real into = dot(dr, away);
     if (into < 0 && d < range) dr -= into * away;

@@ -50,6 +50,7 @@ PARTICULA_HD real cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 PARTICULA_HD Vec2 cross(real omega, Vec2 r) { return {-omega * r.y, omega * r.x}; }
 PARTICULA_HD real norm2(Vec2 a) { return dot(a, a); }
 PARTICULA_HD real norm(Vec2 a) { return std::sqrt(dot(a, a)); }
+PARTICULA_HD bool all_finite(Vec2 a) { return std::isfinite(a.x) && std::isfinite(a.y); }
 /// Rotate a by angle (radians), counter-clockwise.
 PARTICULA_HD Vec2 rotate(Vec2 a, real c, real s) { return {c * a.x - s * a.y, s * a.x + c * a.y}; }
 

@@ -46,6 +46,14 @@ PARTICULA_HD Vec3 cross(Vec3 a, Vec3 b) {
 }
 PARTICULA_HD real norm2(Vec3 a) { return dot(a, a); }
 PARTICULA_HD real norm(Vec3 a) { return std::sqrt(dot(a, a)); }
+/// A unit vector perpendicular to the unit vector n (crossed with the axis least aligned with it).
+PARTICULA_HD Vec3 any_perpendicular(Vec3 n) {
+  const real ax = std::fabs(n.x), ay = std::fabs(n.y), az = std::fabs(n.z);
+  const Vec3 e = ax <= ay && ax <= az ? Vec3{1, 0, 0} : (ay <= az ? Vec3{0, 1, 0} : Vec3{0, 0, 1});
+  const Vec3 t = cross(n, e);
+  return t / norm(t);
+}
+PARTICULA_HD bool all_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 
 /// General 3x3 matrix, row-major: xx xy xz / yx yy yz / zx zy zz.
 template <>

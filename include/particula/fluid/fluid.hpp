@@ -16,7 +16,8 @@ PARTICULA_HD real density_from_pressure(real p, real rho0, real c, real p0) {
 
 /// Momentum rate of a fluid particle (P.2 discretized):
 ///   dV/dt = -<grad P>_i / rho_i + nu <lap V>_i + f,   f = body force (+ g when kept in the fluid).
-PARTICULA_HD Vec2 momentum_rate(Vec2 grad_p_over_rho, Vec2 lap_v, real nu, Vec2 f) {
+template <int D>
+PARTICULA_HD Vec<D> momentum_rate(Vec<D> grad_p_over_rho, Vec<D> lap_v, real nu, Vec<D> f) {
   return -grad_p_over_rho + nu * lap_v + f;
 }
 

@@ -54,6 +54,13 @@ struct DomainOf<2> {
     }
     return x;
   }
+
+  /// Whether x lies beyond a closed (not periodic) side of the box by more than `margin`.
+  PARTICULA_HD bool outside_closed(Vec2 x, real margin) const {
+    if (!periodic_x && (x.x < lo.x - margin || x.x > hi.x + margin)) return true;
+    if (!periodic_y && (x.y < lo.y - margin || x.y > hi.y + margin)) return true;
+    return false;
+  }
 };
 using Domain = DomainOf<2>;
 
@@ -79,6 +86,14 @@ struct DomainOf<3> {
     if (periodic_y) x.y = wrap_into(x.y, lo.y, hi.y - lo.y);
     if (periodic_z) x.z = wrap_into(x.z, lo.z, hi.z - lo.z);
     return x;
+  }
+
+  /// Whether x lies beyond a closed (not periodic) side of the box by more than `margin`.
+  PARTICULA_HD bool outside_closed(Vec3 x, real margin) const {
+    if (!periodic_x && (x.x < lo.x - margin || x.x > hi.x + margin)) return true;
+    if (!periodic_y && (x.y < lo.y - margin || x.y > hi.y + margin)) return true;
+    if (!periodic_z && (x.z < lo.z - margin || x.z > hi.z + margin)) return true;
+    return false;
   }
 };
 using Domain3 = DomainOf<3>;

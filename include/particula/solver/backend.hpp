@@ -30,10 +30,6 @@ struct PhysicsParams;
 struct SolverCounters;
 struct PhaseTimes;
 
-/// Which stage-start buffers a stage reads: the predictor starts from the step-start values
-/// (V^n, rho^n), the corrector from the predicted ones (V*, rho*).
-enum class StageStart { StepStart, Predicted };
-
 /// Loads of one rigid group as reduced on the device (P.26-P.27, numerics.force = paper).
 struct GroupLoads {
   Vec2 force_pressure, force_viscous;

@@ -5,13 +5,17 @@
 #include <string>
 
 #include "particula/core/types.hpp"
+#include "particula/core/types3.hpp"
 
 namespace particula {
 
-struct Failure {
+/// In D dimensions (`Failure` the 2D solver's).
+template <int D>
+struct FailureOf {
   std::string what;
   std::int64_t particle_id = -1;
-  Vec2 position;
+  Vec<D> position;
 };
+using Failure = FailureOf<2>;
 
 }  // namespace particula

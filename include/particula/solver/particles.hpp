@@ -1,7 +1,8 @@
 // Particle state as a structure of arrays. Boundary particles (wall and body surfaces, and
 // dummy particles of the baseline) occupy the fixed block [0, n_boundary) so that rigid
 // groups can address them by index; fluid particles follow and are periodically reordered
-// by cell for locality.
+// by cell for locality. In D dimensions (`Particles` the 2D solver's); nothing global: a store
+// is one solver's.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "particula/core/types.hpp"
+#include "particula/core/types3.hpp"
 
 namespace particula {
 
@@ -20,23 +22,24 @@ enum class Kind : std::uint8_t { Fluid = 0, Boundary = 1, Dummy = 2, Inlet = 3, 
 /// Whether a particle of this kind is a buffer particle of an open boundary.
 PARTICULA_HD bool is_buffer(Kind k) { return k == Kind::Inlet || k == Kind::Outlet; }
 
-struct Particles {
+template <int D>
+struct ParticlesOf {
   std::size_t n_boundary = 0;
   std::int64_t next_id = 0;  // the id of the next particle created (open boundaries); ids are never reused
 
   // every particle
-  std::vector<Vec2> x, v;
+  std::vector<Vec<D>> x, v;
   std::vector<real> rho, p, m;
   std::vector<Kind> kind;
   std::vector<std::int32_t> group;  // rigid group (wall or body) of a boundary particle, -1 for fluid
   std::vector<std::int64_t> id;     // stable identity across reordering
 
   // boundary block only (size n_boundary)
-  std::vector<Vec2> local;          // position in the group's body frame
-  std::vector<Vec2> normal_local;   // analytic outward normal in the body frame
-  std::vector<real> ds;             // surface length represented (0 for dummy particles)
-  std::vector<Vec2> acc;            // acceleration of the surface point
-  std::vector<Vec2> normal;         // current normal (P.18 or analytic)
+  std::vector<Vec<D>> local;        // position in the group's body frame
+  std::vector<Vec<D>> normal_local; // analytic outward normal in the body frame
+  std::vector<real> ds;             // surface length (2D) or area (3D) represented (0 for dummy particles)
+  std::vector<Vec<D>> acc;          // acceleration of the surface point
+  std::vector<Vec<D>> normal;       // current normal (P.18 or analytic)
   std::vector<real> wedge;          // at a convex corner of the solid: half the angle between the
                                     // two sides' normals (boundary/surface_guard.hpp); 0 elsewhere
   std::vector<std::int32_t> source; // dummy particles: the surface particle they copy P, rho from
@@ -47,5 +50,7 @@ struct Particles {
   void resize(std::size_t n);
   void resize_boundary(std::size_t nb);
 };
+using Particles = ParticlesOf<2>;
+using Particles3 = ParticlesOf<3>;
 
 }  // namespace particula

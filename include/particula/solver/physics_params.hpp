@@ -10,6 +10,7 @@
 #include "particula/boundary/open_boundary.hpp"
 #include "particula/case/case.hpp"
 #include "particula/core/types.hpp"
+#include "particula/core/types3.hpp"
 #include "particula/geometry/shape.hpp"
 #include "particula/geometry/wall_piece.hpp"
 #include "particula/bodies/collision.hpp"
@@ -41,13 +42,15 @@ struct BodyParams {
 /// Steps between cell reorderings of the fluid block (a cost setting, not a case key).
 inline constexpr int kReorderInterval = 50;
 
-/// Everything the physics needs, in SI units (filled from a Case by the scene builder).
-struct PhysicsParams {
+/// The fluid and the numerics of its passes, in D dimensions: what the particle passes of a step
+/// read (solver/cpu_sweeps.hpp), the same in 2D and 3D.
+template <int D>
+struct FluidParamsOf {
   real d0{}, h{};
   real rho0{}, nu{}, c{}, p0{};
-  Vec2 gravity;
+  Vec<D> gravity;
   bool gravity_in_fluid{};
-  Vec2 body_force;
+  Vec<D> body_force;
   real cfl{};
   real dt_max{};
   bool fatehi_manzari{};         // false: Morris Laplacian (baseline)
@@ -63,6 +66,11 @@ struct PhysicsParams {
   int wall_pressure_sweeps{};
   real rho_min_ratio{}, rho_max_ratio{};
   int reorder_interval{};  // steps between cell reorderings of the fluid block (kReorderInterval)
+};
+
+/// Everything the physics needs, in SI units (filled from a Case by the scene builder): the
+/// fluid's parameters and the 2D solids, contacts and open boundaries.
+struct PhysicsParams : FluidParamsOf<2> {
   // numerics.load_band_motion (m): the band of the momentum loads is kept until a solid surface
   // or a particle (relative to its closest solid) has moved this far since it was built, less
   // between two solids close together (0: built every step)

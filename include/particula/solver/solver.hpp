@@ -30,6 +30,7 @@
 #include "particula/solver/rigid_bodies.hpp"
 #include "particula/solver/rigid_group.hpp"
 #include "particula/solver/sweeps.hpp"
+#include "particula/solver/time_step.hpp"
 #include "particula/sph/kernel.hpp"
 
 namespace particula {
@@ -48,14 +49,6 @@ inline constexpr int kTimeStepDropSteps = 10;
 /// P.20) or from a checkpointed state (taken exactly as it is, so a resumed run is bitwise
 /// identical to an uninterrupted one).
 enum class SolverStart { Fresh, Restart };
-
-/// What set a step's length (M.9): the Courant condition (P.30), viscous diffusion (P.31),
-/// time.dt_max, the force condition, a contact's t_c / 20, or the next output or end time the
-/// step was shortened to land on.
-enum class StepLimit { Acoustic, Viscous, DtMax, BodyForce, Contact, Landing };
-inline constexpr int kStepLimits = 6;
-/// The limit's name in summary.json (time_step.limited_by).
-const char* step_limit_name(StepLimit l);
 
 class Solver {
  public:
@@ -187,10 +180,6 @@ class Solver {
   std::optional<Failure> time_step_collapse(real dt) const;
 
   /// The stable step and the limit that sets it.
-  struct StableStep {
-    real dt;
-    StepLimit limit;
-  };
   StableStep stable_step() const;
   StageParams stage_params(real dt) const;
   HealthLimits health_limits() const;

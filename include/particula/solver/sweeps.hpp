@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #include "particula/boundary/surface_guard.hpp"
 #include "particula/boundary/wall_pressure.hpp"
@@ -37,18 +38,19 @@ namespace particula {
 /// particle 0.4 d0 off the surface moving 1 cm/s against it gave nu lap V of ~50 m/s^2 there, a
 /// surface pressure of -2.9 Pa (a thousand times the flow's viscous stress), whose gradient drove
 /// the particle faster still (docs/method.md, "Isolated particles").
-PARTICULA_HD void velocity_derivatives_at(const SweepContext& c, std::size_t i, const Vec2* v, Mat2& L, Vec2& lap) {
-  L = Mat2{};
-  lap = Vec2{};
+template <int D>
+PARTICULA_HD void velocity_derivatives_at(const SweepContextOf<D>& c, std::size_t i, const Vec<D>* v, Mat<D>& L, Vec<D>& lap) {
+  L = Mat<D>{};
+  lap = Vec<D>{};
   if (c.kind[i] == Kind::Dummy) return;
-  const Vec2 vi = v[i];
+  const Vec<D> vi = v[i];
   const bool surface = i < c.nb && c.isolated;
-  Vec2 a;
+  Vec<D> a;
   const std::size_t b = c.first_pair(i), st = c.stride;
   const std::uint32_t np = c.pair_count(i);
   for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
     const std::uint32_t j = c.j[k];
-    const Vec2 dv = v[j] - vi;  // V_j - V_i
+    const Vec<D> dv = v[j] - vi;  // V_j - V_i
     L += vector_gradient_pair(c.grad_w[k], dv);
     if (surface && j >= c.nb && c.isolated[j]) continue;
     a -= c.lap_w[k] * dv;  // lap_w (V_i - V_j)
@@ -58,8 +60,9 @@ PARTICULA_HD void velocity_derivatives_at(const SweepContext& c, std::size_t i, 
 
 /// <grad P>_i / rho_i with the renormalized gradient (P.7; at fluid particles with
 /// numerics.gradient = "consistent" also corrected to zeroth order, geometry_at).
-PARTICULA_HD Vec2 pressure_gradient_at(const SweepContext& c, std::size_t i, const real* p, const real* rho) {
-  Vec2 g;
+template <int D>
+PARTICULA_HD Vec<D> pressure_gradient_at(const SweepContextOf<D>& c, std::size_t i, const real* p, const real* rho) {
+  Vec<D> g;
   const real pi = p[i];
   const std::size_t b = c.first_pair(i), st = c.stride;
   const std::uint32_t np = c.pair_count(i);
@@ -71,9 +74,10 @@ PARTICULA_HD Vec2 pressure_gradient_at(const SweepContext& c, std::size_t i, con
 ///   <div <grad P/rho>>_i - <div (grad P/rho)>_i,
 /// the first-derivative scheme applied twice minus the second-derivative scheme applied once
 /// (to P with the pair-averaged density). `G` holds <grad P>/rho of every particle. Zero for dummies.
-PARTICULA_HD real rhie_chow_at(const SweepContext& c, std::size_t i, const real* p, const real* rho, const Vec2* G) {
+template <int D>
+PARTICULA_HD real rhie_chow_at(const SweepContextOf<D>& c, std::size_t i, const real* p, const real* rho, const Vec<D>* G) {
   if (c.kind[i] == Kind::Dummy) return 0;
-  const Vec2 Gi = G[i];
+  const Vec<D> Gi = G[i];
   const real pi = p[i], rhoi = rho[i];
   real div_g = 0, lap_p = 0;
   const std::size_t b = c.first_pair(i), st = c.stride;
@@ -93,7 +97,8 @@ PARTICULA_HD real rhie_chow_at(const SweepContext& c, std::size_t i, const real*
 /// that the conditioning guard allows to amplify (weights up to 2 in magnitude), which ran away
 /// in a body resting against a wall (docs/method.md, "Sharp corners"). Box corners
 /// (normals at 90 degrees) and a body's own surface keep the paper's treatment.
-PARTICULA_HD bool surface_across_a_gap(const SweepContext& c, std::size_t i, std::uint32_t j) {
+template <int D>
+PARTICULA_HD bool surface_across_a_gap(const SweepContextOf<D>& c, std::size_t i, std::uint32_t j) {
   return j < c.nb && c.group != nullptr && c.normal != nullptr && c.kind[j] == Kind::Boundary &&
          c.group[j] != c.group[i] && dot(c.normal[i], c.normal[j]) < -0.5;
 }
@@ -107,8 +112,9 @@ PARTICULA_HD bool surface_across_a_gap(const SweepContext& c, std::size_t i, std
 /// same momentum balance. With no fluid within void_distance (kVoidDistance d0; 0: no void
 /// test), the surface faces a void and takes its pressure, p0, where no fluid in its support is
 /// in tension (void_pressure_applies). Kept: p_out untouched (no fluid neighbour at all).
-PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContext& c, std::size_t i, const real* p, const real* rho,
-                                                  Vec2 n, Vec2 a, Vec2 nu_lap_v, Vec2 f, real min_den,
+template <int D>
+PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContextOf<D>& c, std::size_t i, const real* p, const real* rho,
+                                                  Vec<D> n, Vec<D> a, Vec<D> nu_lap_v, Vec<D> f, real min_den,
                                                   real void_distance, real p0, real& p_out) {
   WallPressureSums s;
   const real rhoi = rho[i];
@@ -140,12 +146,12 @@ PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContext& c, std::si
   const bool conditioned = wall_pressure_well_conditioned(s);
   if (conditioned && s.den >= min_den && wall_pressure(s, a, nu_lap_v, f, n, p_out)) return WallPressureOutcome::Solved;
   WallExtrapolationSums e;
-  const Vec2 xi = c.x[i], balance = f + nu_lap_v - a;
+  const Vec<D> xi = c.x[i], balance = f + nu_lap_v - a;
   for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
     const std::uint32_t j = c.j[k];
     if (j < c.nb) continue;
     if (c.isolated && c.isolated[j]) continue;  // takes its pressure from the surfaces instead
-    const Vec2 x_ji = c.domain.separation(c.x[j], xi);
+    const Vec<D> x_ji = c.domain.separation(c.x[j], xi);
     wall_extrapolation_pair(e, c.kernel.W(norm(x_ji)), p[j], rho[j], x_ji, balance);
   }
   if (!wall_extrapolation(e, p_out)) return WallPressureOutcome::Kept;
@@ -155,10 +161,11 @@ PARTICULA_HD WallPressureOutcome wall_pressure_at(const SweepContext& c, std::si
 /// The Shepard mean sum_j w_j W_ij P_j / sum_j w_j W_ij of the pressures of particle i's surface
 /// neighbours (`surfaces`) or of its fluid neighbours (not `surfaces`; isolated ones left out).
 /// Returns false (p_out untouched) with no such neighbour in the support.
-PARTICULA_HD bool shepard_pressure_at(const SweepContext& c, std::size_t i, const real* p, bool surfaces,
+template <int D>
+PARTICULA_HD bool shepard_pressure_at(const SweepContextOf<D>& c, std::size_t i, const real* p, bool surfaces,
                                       real& p_out) {
   real sw = 0, swp = 0;
-  const Vec2 xi = c.x[i];
+  const Vec<D> xi = c.x[i];
   const std::size_t b = c.first_pair(i), st = c.stride;
   const std::uint32_t np = c.pair_count(i);
   for (std::size_t q = 0, k = b; q < np; ++q, k += st) {
@@ -183,26 +190,35 @@ PARTICULA_HD bool shepard_pressure_at(const SweepContext& c, std::size_t i, cons
 /// at its hydrostatic density, and the burst ended the run (`settling_pile`, `mixed_shapes`). With
 /// its pressure taken from the surfaces, the particle is carried by the local pressure field and
 /// offers no spurious cushion. Returns false (p_out untouched) with no surface particle in support.
-PARTICULA_HD bool isolated_pressure_at(const SweepContext& c, std::size_t i, const real* p, real& p_out) {
+template <int D>
+PARTICULA_HD bool isolated_pressure_at(const SweepContextOf<D>& c, std::size_t i, const real* p, real& p_out) {
   return shepard_pressure_at(c, i, p, true, p_out);
 }
 
 // ---- pointwise updates of one particle ------------------------------------------------------
 
-/// Constants of the pointwise updates (a plain struct for host and device).
-struct StageParams {
+/// Which stage-start buffers a stage reads: the predictor starts from the step-start values
+/// (V^n, rho^n), the corrector from the predicted ones (V*, rho*).
+enum class StageStart { StepStart, Predicted };
+
+/// Constants of the pointwise updates (a plain struct for host and device), in D dimensions
+/// (`StageParams` the 2D solver's).
+template <int D>
+struct StageParamsOf {
   real dt = 0;
   real g_dt = 0;       // Rhie-Chow factor G times dt (P.16)
   real nu = 0;
-  Vec2 f;              // body force, plus gravity when it is kept in the fluid
+  Vec<D> f;            // body force, plus gravity when it is kept in the fluid
   real rho0 = 1000, c = 0, p0 = 0;
   real kappa = 0;      // coefficient of the velocity odd-even damping (m^2/s), see odd_even_velocity_at
   real void_distance = 0;  // kVoidDistance d0: a surface particle with no fluid this near faces a void (0: none)
   bool single_layer = true;
 };
+using StageParams = StageParamsOf<2>;
 
 /// Explicit momentum stage of a fluid particle: V = V_start + dt (-<grad P>/rho + nu <lap V> + f).
-PARTICULA_HD Vec2 momentum_stage(Vec2 v_start, Vec2 grad_p_over_rho, Vec2 lap_v, const StageParams& s) {
+template <int D>
+PARTICULA_HD Vec<D> momentum_stage(Vec<D> v_start, Vec<D> grad_p_over_rho, Vec<D> lap_v, const StageParamsOf<D>& s) {
   return v_start + s.dt * momentum_rate(grad_p_over_rho, lap_v, s.nu, s.f);
 }
 
@@ -213,7 +229,8 @@ PARTICULA_HD bool evolves_density(std::size_t i, std::size_t nb, Kind kind, bool
 }
 
 /// Modified continuity stage (P.13-P.16) and the equation of state: rho = rho_start + dt D, P(rho).
-PARTICULA_HD void continuity_stage(real rho_start, real div_v, real rhie_chow, const StageParams& s, real& rho,
+template <int D>
+PARTICULA_HD void continuity_stage(real rho_start, real div_v, real rhie_chow, const StageParamsOf<D>& s, real& rho,
                                    real& p) {
   rho = rho_start + s.dt * continuity_rate(rho_start, div_v, s.g_dt, rhie_chow);
   p = equation_of_state(rho, s.rho0, s.c, s.p0);
@@ -222,8 +239,9 @@ PARTICULA_HD void continuity_stage(real rho_start, real div_v, real rhie_chow, c
 /// End of step (P.28): fluid velocity and density the mean of the step-start and corrected
 /// values, position advanced with the new velocity. Returns |V|^2 for the shifting scale.
 /// Buffer particles of open boundaries keep the fields the boundary set and are moved by it.
-PARTICULA_HD real end_of_step_update(std::size_t i, std::size_t nb, Kind kind, const Domain& domain, real dt,
-                                     bool single_layer, Vec2 v_n, real rho_n, real p_n, Vec2& x, Vec2& v, real& rho,
+template <int D>
+PARTICULA_HD real end_of_step_update(std::size_t i, std::size_t nb, Kind kind, const DomainOf<D>& domain, real dt,
+                                     bool single_layer, Vec<D> v_n, real rho_n, real p_n, Vec<D>& x, Vec<D>& v, real& rho,
                                      real& p) {
   if (is_buffer(kind)) return norm2(v);
   if (i >= nb) {
@@ -241,10 +259,11 @@ PARTICULA_HD real end_of_step_update(std::size_t i, std::size_t nb, Kind kind, c
 /// direction of the geometry sweep, with the first-order Taylor corrections of V, P and rho
 /// (using the step's mean velocity gradient and the new <grad P>/rho). The shift has no
 /// component towards a surface closer than `surface_range` (surface guard).
-PARTICULA_HD void shift_particle(Vec2 direction, real scale, const Mat2& grad_v, Vec2 grad_p_over_rho,
-                                 const NearSurfaces& surfaces, real surface_range, const Domain& domain, real c,
-                                 Vec2& x, Vec2& v, real& p, real& rho) {
-  const Vec2 dr = limit_shift_at_surfaces(scale * direction, surfaces, surface_range, domain, x);  // P.33
+template <int D>
+PARTICULA_HD void shift_particle(Vec<D> direction, real scale, const Mat<D>& grad_v, Vec<D> grad_p_over_rho,
+                                 const NearSurfacesOf<D>& surfaces, real surface_range, const DomainOf<D>& domain, real c,
+                                 Vec<D>& x, Vec<D>& v, real& p, real& rho) {
+  const Vec<D> dr = limit_shift_at_surfaces(scale * direction, surfaces, surface_range, domain, x);  // P.33
   x = domain.wrap(x + dr);
   v += dr * grad_v;                              // P.34
   const real dp = rho * dot(dr, grad_p_over_rho);  // P.35: rho dr . <grad P / rho>
@@ -257,40 +276,41 @@ PARTICULA_HD void shift_particle(Vec2 direction, real scale, const Mat2& grad_v,
 /// normals and velocities (`surfaces`, over the same arrays as x and v) are those of the end of
 /// the step. Race-free in one loop: it reads
 /// boundary particles and writes only fluid particle i.
+template <int D>
 PARTICULA_HD GuardOutcome surface_guard_at(std::size_t i, const std::uint32_t* near_a, const std::uint32_t* near_b,
-                                           const SurfaceArrays& surfaces, Vec2* x, Vec2* v, real keep,
-                                           const Domain& domain) {
-  const NearSurfaces ns = gather_surfaces(near_a[i], near_b[i], surfaces);
+                                           const SurfaceArraysOf<D>& surfaces, Vec<D>* x, Vec<D>* v, real keep,
+                                           const DomainOf<D>& domain) {
+  const NearSurfacesOf<D> ns = gather_surfaces(near_a[i], near_b[i], surfaces);
   return guard_surfaces(ns, keep, domain, x[i], v[i]);
 }
 
 /// Limits of a healthy state (exit 3 otherwise).
-struct HealthLimits {
+template <int D>
+struct HealthLimitsOf {
   real rho_lo = 0, rho_hi = 0, h = 0;
-  Domain domain;
+  DomainOf<D> domain;
 };
+using HealthLimits = HealthLimitsOf<2>;
 
 /// Whether particle i is unhealthy: a non-finite value, or for a fluid particle (`fluid`: kind
 /// Fluid) a density outside the limits or a position outside a closed domain (by more than h).
-PARTICULA_HD bool particle_unhealthy(bool fluid, Vec2 x, Vec2 v, real rho, real p, const HealthLimits& l) {
-  const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(v.x) && std::isfinite(v.y) &&
-                      std::isfinite(rho) && std::isfinite(p);
+template <int D>
+PARTICULA_HD bool particle_unhealthy(bool fluid, Vec<D> x, Vec<D> v, real rho, real p, const HealthLimitsOf<D>& l) {
+  const bool finite = all_finite(x) && all_finite(v) && std::isfinite(rho) && std::isfinite(p);
   if (!finite) return true;
   if (!fluid) return false;
   if (rho < l.rho_lo || rho > l.rho_hi) return true;
-  const Domain& d = l.domain;
-  if (!d.periodic_x && (x.x < d.lo.x - l.h || x.x > d.hi.x + l.h)) return true;
-  if (!d.periodic_y && (x.y < d.lo.y - l.h || x.y > d.hi.y + l.h)) return true;
-  return false;
+  return l.domain.outside_closed(x, l.h);
 }
 
 // ---- one particle's share of a fused pass (the loop body of the CPU loop and the GPU kernel) --
 
 /// Velocity derivatives of `v` at particle i, stored: grad V, lap V and div V = tr(grad V).
-PARTICULA_HD void store_velocity_derivatives(const SweepContext& c, std::size_t i, const Vec2* v, Mat2* grad_v,
-                                             Vec2* lap_v, real* div_v) {
-  Mat2 L;
-  Vec2 lap;
+template <int D>
+PARTICULA_HD void store_velocity_derivatives(const SweepContextOf<D>& c, std::size_t i, const Vec<D>* v, Mat<D>* grad_v,
+                                             Vec<D>* lap_v, real* div_v) {
+  Mat<D> L;
+  Vec<D> lap;
   velocity_derivatives_at(c, i, v, L, lap);
   grad_v[i] = L;
   lap_v[i] = lap;
@@ -304,9 +324,10 @@ PARTICULA_HD void store_velocity_derivatives(const SweepContext& c, std::size_t 
 /// (checkerboard) velocity mode that the wide one does not. kappa times this damps exactly that
 /// mode, which nothing else controls at high cell Reynolds numbers c d0 / nu
 /// (docs/method.md, "Odd-even velocity damping").
-PARTICULA_HD Vec2 odd_even_velocity_at(const SweepContext& c, std::size_t i, const Mat2* grad_v, Vec2 lap_v) {
-  const Mat2 Li = grad_v[i];
-  Vec2 wide;
+template <int D>
+PARTICULA_HD Vec<D> odd_even_velocity_at(const SweepContextOf<D>& c, std::size_t i, const Mat<D>* grad_v, Vec<D> lap_v) {
+  const Mat<D> Li = grad_v[i];
+  Vec<D> wide;
   const std::size_t b = c.first_pair(i), st = c.stride;
   const std::uint32_t np = c.pair_count(i);
   for (std::size_t q = 0, k = b; q < np; ++q, k += st) wide += c.grad_w[k] * (grad_v[c.j[k]] - Li);
@@ -322,7 +343,8 @@ PARTICULA_HD Vec2 odd_even_velocity_at(const SweepContext& c, std::size_t i, con
 /// resting film between two polygons to 0.5 rho0 (mixed_shapes at d0 = 5e-5; docs/method.md,
 /// "Unresolved films"). The relaxation has positive weights and a rate of at most 1 per step, so
 /// it cannot amplify.
-PARTICULA_HD real film_relaxation_bracket(real rho_i, real p_fluid, const StageParams& s, real h) {
+template <int D>
+PARTICULA_HD real film_relaxation_bracket(real rho_i, real p_fluid, const StageParamsOf<D>& s, real h) {
   const real tau = s.c > 0 && h / s.c > s.dt ? h / s.c : s.dt;
   const real rho_target = density_from_pressure(p_fluid, s.rho0, s.c, s.p0);
   return -(rho_target - rho_i) / (tau * rho_i * s.g_dt);
@@ -333,11 +355,13 @@ PARTICULA_HD real film_relaxation_bracket(real rho_i, real p_fluid, const StageP
 /// from v_start, and (odd_even not null) the odd-even damping's acceleration
 /// kappa (<lap V> - <div <grad V>>) of fluid particle i, which the band sums report apart from the
 /// loads (solver/momentum_loads.hpp, band_share_damping). Race-free in one loop: it reads P, rho,
-/// G, grad V of the neighbours and writes only particle i's entries.
-PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContext& c, std::size_t i, const real* p,
-                                            const real* rho, const Vec2* G, const Mat2* grad_v,
-                                            const Vec2* lap_v, const Vec2* v_start, const StageParams& s,
-                                            real* rc, Vec2* v, Vec2* odd_even) {
+/// G, grad V of the neighbours and writes only particle i's entries. (`odd_even` may be nullptr:
+/// a parameter D is not deduced from.)
+template <int D>
+PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContextOf<D>& c, std::size_t i, const real* p,
+                                            const real* rho, const Vec<D>* G, const Mat<D>* grad_v,
+                                            const Vec<D>* lap_v, const Vec<D>* v_start, const StageParamsOf<D>& s,
+                                            real* rc, Vec<D>* v, std::type_identity_t<Vec<D>>* odd_even) {
   rc[i] = rhie_chow_at(c, i, p, rho, G);
   const real film = c.film != nullptr ? c.film[i] : real(0);
   real p_fluid = 0;
@@ -346,7 +370,7 @@ PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContext& c, std::size_t i
   if (c.kind[i] != Kind::Fluid) return;  // surfaces move with their solid; buffers are set by their boundary
   v[i] = momentum_stage(v_start[i], G[i], lap_v[i], s);
   if (s.kappa > 0) {
-    const Vec2 oe = odd_even_velocity_at(c, i, grad_v, lap_v[i]);
+    const Vec<D> oe = odd_even_velocity_at(c, i, grad_v, lap_v[i]);
     v[i] += (s.dt * s.kappa) * oe;
     if (odd_even != nullptr) odd_even[i] = s.kappa * oe;
   }
@@ -355,9 +379,10 @@ PARTICULA_HD void rhie_chow_and_momentum_at(const SweepContext& c, std::size_t i
 /// The unresolved-film fraction of fluid particle i (boundary/surface_guard.hpp, film_fraction)
 /// from its nearest surfaces of this step's geometry sweep; 0 for boundary particles. Computed
 /// once per step into SweepContext::film, after the geometry sweep (which writes the normals).
-PARTICULA_HD real film_fraction_at(const SweepContext& c, std::size_t i, real film_gap) {
+template <int D>
+PARTICULA_HD real film_fraction_at(const SweepContextOf<D>& c, std::size_t i, real film_gap) {
   if (i < c.nb || !(film_gap > 0) || c.near_a == nullptr) return 0;
-  return film_fraction(gather_surfaces(c.near_a[i], c.near_b[i], SurfaceArrays{c.x, c.normal, c.wedge, c.ds, nullptr}), film_gap, c.domain, c.x[i]);
+  return film_fraction(gather_surfaces(c.near_a[i], c.near_b[i], SurfaceArraysOf<D>{c.x, c.normal, c.wedge, c.ds, nullptr}), film_gap, c.domain, c.x[i]);
 }
 
 /// Velocity derivatives of the new V at particle i, then its continuity stage from rho_start.
@@ -366,9 +391,10 @@ PARTICULA_HD real film_fraction_at(const SweepContext& c, std::size_t i, real fi
 /// neighbours' pressure: rhie_chow_and_momentum_at). The fraction is read from an array: looked
 /// up here, per stage, it cost 12 % of the step (docs/performance.md).
 /// Race-free in one loop: the derivatives read V and the frozen volumes, never rho or P.
-PARTICULA_HD void derivatives_and_continuity_at(const SweepContext& c, std::size_t i, const Vec2* v,
-                                                const real* rho_start, const real* rc, const StageParams& s,
-                                                Mat2* grad_v, Vec2* lap_v, real* div_v, real* rho, real* p) {
+template <int D>
+PARTICULA_HD void derivatives_and_continuity_at(const SweepContextOf<D>& c, std::size_t i, const Vec<D>* v,
+                                                const real* rho_start, const real* rc, const StageParamsOf<D>& s,
+                                                Mat<D>* grad_v, Vec<D>* lap_v, real* div_v, real* rho, real* p) {
   store_velocity_derivatives(c, i, v, grad_v, lap_v, div_v);
   if (!evolves_density(i, c.nb, c.kind[i], s.single_layer)) return;
   const real resolved = c.film ? 1 - c.film[i] : real(1);

@@ -19,6 +19,14 @@ inline real wendland_normalization<3>(real h) {
   return 21.0 / (2 * M_PI * h * h * h);
 }
 
+/// The volume d0^D of one lattice cell of spacing d0 (an area in 2D).
+template <int D>
+PARTICULA_HD real cell_volume(real d0) {
+  real v = d0;
+  for (int a = 1; a < D; ++a) v *= d0;
+  return v;
+}
+
 /// W(r,h) = W0 (1-q)^4 (4q+1) for q = r/h < 1, else 0 (W0 = wendland_normalization<D>(h)).
 /// h is the CUT-OFF radius (the support ends at r = h), not half of it.
 template <int D>
