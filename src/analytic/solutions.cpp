@@ -27,6 +27,36 @@ real poiseuille_startup(real y, real t, real L, real F, real nu) {
   return u;
 }
 
+real duct_startup(real y, real z, real t, real Ly, real Lz, real F, real nu) {
+  if (!(t > 0)) return 0;
+  // Steady part: the plates' parabola in y less the cosh correction of the z walls,
+  //   u_s = F y (Ly - y) / (2 nu) - sum_{m odd} 4 F / (m pi nu k^2) sin(k y) cosh(k (z - Lz/2)) / cosh(k Lz/2),
+  // k = m pi / Ly; the ratio of the cosh is written with exponentials of negative arguments
+  // (it is exp(-k d) at a distance d from the nearer z wall: the terms fall off exponentially).
+  real u = F * y * (Ly - y) / (2 * nu);
+  const real s = std::fabs(z - 0.5 * Lz);
+  for (int m = 1; m < 200001; m += 2) {
+    const real k = m * M_PI / Ly;
+    const real ratio = std::exp(-k * (0.5 * Lz - s)) * (1 + std::exp(-2 * k * s)) / (1 + std::exp(-k * Lz));
+    const real term = 4 * F / (m * M_PI * nu * k * k) * ratio;
+    u -= term * std::sin(k * y);
+    if (term < 1e-15 * F * Ly * Ly / nu) break;
+  }
+  // Transient part: sum_{m,n odd} 16 F / (pi^2 m n nu lambda) exp(-nu lambda t) sin(m pi y / Ly)
+  // sin(n pi z / Lz), lambda = (m pi / Ly)^2 + (n pi / Lz)^2: the exponential ends both sums.
+  for (int m = 1;; m += 2) {
+    const real ky = m * M_PI / Ly;
+    if (nu * ky * ky * t > 40) break;
+    for (int n = 1;; n += 2) {
+      const real kz = n * M_PI / Lz, lambda = ky * ky + kz * kz;
+      if (nu * lambda * t > 40) break;
+      u -= 16 * F / (M_PI * M_PI * m * n * nu * lambda) * std::exp(-nu * lambda * t) * std::sin(ky * y) *
+           std::sin(kz * z);
+    }
+  }
+  return u;
+}
+
 real bessel_j1_zero(int n) {
   // McMahon's expansion, then Newton on J1 (J1' = J0 - J1/x): converged to round-off.
   const real beta = (n + 0.25) * M_PI;

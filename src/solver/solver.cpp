@@ -17,6 +17,7 @@
 #include "particula/boundary/wall_pressure.hpp"
 #include "particula/fluid/fluid.hpp"
 #include "particula/solver/closest_pair.hpp"
+#include "particula/solver/fluid_solver.hpp"
 #include "particula/sph/operators.hpp"
 #include "phase_timer.hpp"
 
@@ -279,7 +280,6 @@ std::optional<Failure> Solver::finish_step() {
 std::optional<Failure> Solver::check_health() const {
   if (auto f = bodies_.at_open_boundary()) return f;
   const HealthLimits lim = health_limits();
-  const real lo = lim.rho_lo, hi = lim.rho_hi;
   const std::int64_t worst = backend_->unhealthy_id(lim);
   if (worst < 0) return bodies_.unhealthy();
   sync_host();  // the host copy names the particle
@@ -288,20 +288,7 @@ std::optional<Failure> Solver::check_health() const {
   Failure f;
   f.particle_id = worst;
   f.position = P_.x[i];
-  const char* kind = P_.is_fluid(i) ? "fluid" : "boundary";
-  char buf[512];
-  if (!(std::isfinite(P_.rho[i]) && std::isfinite(P_.p[i]) && std::isfinite(P_.v[i].x) &&
-        std::isfinite(P_.v[i].y)))
-    std::snprintf(buf, sizeof buf, "non-finite value (NaN or Inf) at %s particle %lld", kind,
-                  static_cast<long long>(worst));
-  else if (P_.rho[i] < lo || P_.rho[i] > hi)
-    std::snprintf(buf, sizeof buf,
-                  "density %.6g kg/m^3 of %s particle %lld outside [%.4g, %.4g] (rho0 x [%g, %g])", P_.rho[i],
-                  kind, static_cast<long long>(worst), lo, hi, prm_.rho_min_ratio, prm_.rho_max_ratio);
-  else
-    std::snprintf(buf, sizeof buf, "%s particle %lld left the closed domain", kind,
-                  static_cast<long long>(worst));
-  f.what = buf;
+  f.what = unhealthy_particle<2>(P_, i, prm_);
   if (P_.is_fluid(i)) f.what += likely_cause(P_.x[i]);
   return f;
 }

@@ -23,3 +23,22 @@ TEST(Analytic, MatchesReferenceTable) {
   EXPECT_NEAR(analytic::taylor_green_decay(0.5, 100), 0.6738, 1e-4);
   EXPECT_NEAR(analytic::taylor_green_decay(2.0, 100), 0.2062, 1e-4);
 }
+
+TEST(Analytic, DuctStartUpReachesTheSquareDuctsSteadyFlowAndThePlatesInAWideDuct) {
+  const real F = 1e-4, nu = 1e-6, L = 1e-3;
+  // the steady centre speed of a square duct of side L: 0.0736713 F L^2 / nu (the classical
+  // series, e.g. White, Viscous Fluid Flow, eq. 3-48 with a = b = L / 2)
+  EXPECT_NEAR(analytic::duct_startup(0.5 * L, 0.5 * L, 100, L, L, F, nu) / (F * L * L / nu), 0.0736713, 2e-7);
+  // symmetric in y and z, zero on the walls, at rest at t = 0
+  EXPECT_NEAR(analytic::duct_startup(0.2 * L, 0.7 * L, 0.05, L, L, F, nu), analytic::duct_startup(0.7 * L, 0.2 * L, 0.05, L, L, F, nu),
+              1e-18);
+  EXPECT_NEAR(analytic::duct_startup(0.2 * L, 0.7 * L, 0.05, L, L, F, nu), analytic::duct_startup(0.8 * L, 0.3 * L, 0.05, L, L, F, nu),
+              1e-18);
+  EXPECT_NEAR(analytic::duct_startup(0.3 * L, 0, 0.05, L, L, F, nu), 0, 1e-15);
+  EXPECT_EQ(analytic::duct_startup(0.3 * L, 0.4 * L, 0, L, L, F, nu), 0);
+  // a duct 40 times wider than high is the plates' start-up flow at its middle
+  for (const real t : {0.01, 0.1, 1.0})
+    for (const real y : {0.1 * L, 0.5 * L, 0.8 * L})
+      EXPECT_NEAR(analytic::duct_startup(y, 20 * L, t, L, 40 * L, F, nu), analytic::poiseuille_startup(y, t, L, F, nu), 1e-10 * F * L * L / nu)
+          << t << " " << y;
+}

@@ -14,6 +14,15 @@ real couette_startup(real y, real t, real L, real V0, real nu);
 /// u = F/(2 nu) y (L - y) - sum_{n>=0} 4 F L^2/(nu pi^3 (2n+1)^3) sin((2n+1) pi y/L) exp(-(2n+1)^2 pi^2 nu t/L^2).
 real poiseuille_startup(real y, real t, real L, real F, real nu);
 
+/// Start-up flow in a rectangular duct 0 < y < Ly, 0 < z < Lz with no-slip walls, driven by a
+/// body force F along the duct from rest at t = 0: the eigenfunction expansion of
+/// du/dt = F + nu (u_yy + u_zz), u = sum_{m,n odd} 16 F / (pi^2 m n lambda_mn nu)
+/// (1 - exp(-nu lambda_mn t)) sin(m pi y / Ly) sin(n pi z / Lz), lambda_mn = (m pi / Ly)^2 + (n pi / Lz)^2,
+/// evaluated as the steady solution (the plates' parabola less a series that falls off
+/// exponentially away from the z walls) less the transient double series (which falls off as
+/// exp(-nu lambda t)); t > 0 (0 at t <= 0).
+real duct_startup(real y, real z, real t, real Ly, real Lz, real F, real nu);
+
 /// The n-th positive zero of the Bessel function J1 (n >= 1: 3.8317, 7.0156, ...).
 real bessel_j1_zero(int n);
 

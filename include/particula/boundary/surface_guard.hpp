@@ -93,10 +93,23 @@ struct NearSurfacesOf {
 };
 using NearSurfaces = NearSurfacesOf<2>;
 
-/// The surface of surface particle j: its tangent line reaching one surface spacing ds_j.
+/// The spacing of a surface sample that stands for `ds` of the surface: ds itself in 2D (a
+/// length), the side of the square of that area in 3D.
+template <int D>
+PARTICULA_HD real sample_spacing(real ds);
+template <>
+PARTICULA_HD real sample_spacing<2>(real ds) {
+  return ds;
+}
+template <>
+PARTICULA_HD real sample_spacing<3>(real ds) {
+  return std::sqrt(ds);
+}
+
+/// The surface of surface particle j: its tangent line (plane) reaching one surface spacing.
 template <int D>
 PARTICULA_HD SurfaceTangentOf<D> surface_at(const SurfaceArraysOf<D>& s, std::uint32_t j) {
-  return SurfaceTangentOf<D>{s.x[j], s.n[j], s.v ? s.v[j] : Vec<D>{}, s.wedge[j], s.ds[j]};
+  return SurfaceTangentOf<D>{s.x[j], s.n[j], s.v ? s.v[j] : Vec<D>{}, s.wedge[j], sample_spacing<D>(s.ds[j])};
 }
 
 /// The surfaces of slots a and b.

@@ -35,16 +35,6 @@
 
 namespace particula {
 
-/// A stable time step below this fraction of the case's own (cfl d0 / c, cfl d0^2 / nu) is a
-/// collapse: 1e4 times more steps than the case was sized for.
-inline constexpr real kTimeStepCollapse = 1e-4;
-
-/// A stable time step below this fraction of the case's own for kTimeStepDropSteps steps in a
-/// row is reported in the log and summary.json (the run goes on): a thousand times more steps
-/// than the case was sized for is a defect to look at, even where the run reaches its end.
-inline constexpr real kTimeStepDrop = 1e-3;
-inline constexpr int kTimeStepDropSteps = 10;
-
 /// How a solver starts: from a freshly built scene (boundary pressures are initialized from
 /// P.20) or from a checkpointed state (taken exactly as it is, so a resumed run is bitwise
 /// identical to an uninterrupted one).

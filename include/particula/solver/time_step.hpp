@@ -14,6 +14,16 @@
 
 namespace particula {
 
+/// A stable time step below this fraction of the case's own (cfl d0 / c, cfl d0^2 / nu) is a
+/// collapse: 1e4 times more steps than the case was sized for.
+inline constexpr real kTimeStepCollapse = 1e-4;
+
+/// A stable time step below this fraction of the case's own for kTimeStepDropSteps steps in a
+/// row is reported in the log and summary.json (the run goes on): a thousand times more steps
+/// than the case was sized for is a defect to look at, even where the run reaches its end.
+inline constexpr real kTimeStepDrop = 1e-3;
+inline constexpr int kTimeStepDropSteps = 10;
+
 /// What set a step's length (M.9): the Courant condition (P.30), viscous diffusion (P.31),
 /// time.dt_max, the force condition, a contact's t_c / 20, or the next output or end time the
 /// step was shortened to land on.

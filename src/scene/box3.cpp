@@ -1,0 +1,104 @@
+#include "particula/scene/box3.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+
+namespace particula {
+
+namespace {
+
+real component(Vec3 v, int a) { return a == 0 ? v.x : (a == 1 ? v.y : v.z); }
+
+Vec3 with(Vec3 v, int a, real value) {
+  if (a == 0) v.x = value;
+  if (a == 1) v.y = value;
+  if (a == 2) v.z = value;
+  return v;
+}
+
+}  // namespace
+
+BoxScene3 build_box3(const BoxSpec3& spec) {
+  BoxScene3 s;
+  s.domain.lo = spec.lo;
+  s.domain.hi = spec.hi;
+  s.domain.periodic_x = spec.periodic[0];
+  s.domain.periodic_y = spec.periodic[1];
+  s.domain.periodic_z = spec.periodic[2];
+  const Vec3 size = spec.hi - spec.lo;
+  int n[3];
+  real dx[3];
+  for (int a = 0; a < 3; ++a) {
+    n[a] = static_cast<int>(std::lround(component(size, a) / spec.d0));
+    if (n[a] < 1) throw std::invalid_argument("build_box3: the box is thinner than one particle spacing");
+    dx[a] = component(size, a) / n[a];
+  }
+  s.spacing = {dx[0], dx[1], dx[2]};
+  const real cell = dx[0] * dx[1] * dx[2];
+  Particles3& P = s.particles;
+  const auto add = [&](Vec3 x, real volume, Vec3 normal, real ds, std::int32_t group, Kind kind) {
+    P.x.push_back(x);
+    P.v.push_back({});
+    P.rho.push_back(spec.rho0);
+    P.p.push_back(spec.p0);
+    P.m.push_back(spec.rho0 * volume);
+    P.kind.push_back(kind);
+    P.group.push_back(group);
+    P.id.push_back(static_cast<std::int64_t>(P.id.size()));
+    if (kind != Kind::Boundary) return;
+    P.local.push_back(x);
+    P.normal_local.push_back(normal);
+    P.normal.push_back(normal);
+    P.ds.push_back(ds);
+    P.acc.push_back({});
+    P.wedge.push_back(0);
+    P.source.push_back(-1);
+  };
+  const auto centre = [&](int a, int i) { return component(spec.lo, a) + (i + 0.5) * dx[a]; };
+  const auto side = [&](int a, bool far) { return far ? component(spec.hi, a) : component(spec.lo, a); };
+  const auto face_group = [&](int a, bool far) { return static_cast<std::int32_t>(2 * a + (far ? 1 : 0)); };
+  // faces: axis a at lo or hi, the other two on the cell centres
+  for (int a = 0; a < 3; ++a) {
+    if (spec.periodic[a]) continue;
+    const int b = (a + 1) % 3, e = (a + 2) % 3;
+    for (const bool far : {false, true})
+      for (int j = 0; j < n[b]; ++j)
+        for (int k = 0; k < n[e]; ++k) {
+          const Vec3 x = with(with(with(Vec3{}, a, side(a, far)), b, centre(b, j)), e, centre(e, k));
+          const Vec3 normal = with(Vec3{}, a, far ? -1 : 1);
+          add(x, 0.5 * cell, normal, dx[b] * dx[e], face_group(a, far), Kind::Boundary);
+        }
+  }
+  // edges: axes b and e closed (at lo or hi), axis a on the cell centres
+  for (int a = 0; a < 3; ++a) {
+    const int b = (a + 1) % 3, e = (a + 2) % 3;
+    if (spec.periodic[b] || spec.periodic[e]) continue;
+    for (int corner = 0; corner < 4; ++corner) {
+      const bool far_b = corner & 1, far_e = corner & 2;
+      const Vec3 normal = with(with(Vec3{}, b, far_b ? -1 : 1), e, far_e ? -1 : 1) / std::sqrt(2.0);
+      const std::int32_t group = face_group(std::min(b, e), std::min(b, e) == b ? far_b : far_e);
+      for (int i = 0; i < n[a]; ++i) {
+        const Vec3 x = with(with(with(Vec3{}, a, centre(a, i)), b, side(b, far_b)), e, side(e, far_e));
+        add(x, 0.25 * cell, normal, 0, group, Kind::Boundary);
+      }
+    }
+  }
+  // corners: all three axes closed
+  if (!spec.periodic[0] && !spec.periodic[1] && !spec.periodic[2])
+    for (int corner = 0; corner < 8; ++corner) {
+      const bool far[3] = {(corner & 1) != 0, (corner & 2) != 0, (corner & 4) != 0};
+      const Vec3 x{side(0, far[0]), side(1, far[1]), side(2, far[2])};
+      const Vec3 normal = Vec3{far[0] ? -1.0 : 1.0, far[1] ? -1.0 : 1.0, far[2] ? -1.0 : 1.0} / std::sqrt(3.0);
+      add(x, 0.125 * cell, normal, 0, face_group(0, far[0]), Kind::Boundary);
+    }
+  P.n_boundary = P.x.size();
+  for (int i = 0; i < n[0]; ++i)
+    for (int j = 0; j < n[1]; ++j)
+      for (int k = 0; k < n[2]; ++k) add({centre(0, i), centre(1, j), centre(2, k)}, cell, {}, 0, -1, Kind::Fluid);
+  P.next_id = static_cast<std::int64_t>(P.size());
+  return s;
+}
+
+}  // namespace particula

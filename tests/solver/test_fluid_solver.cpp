@@ -1,0 +1,148 @@
+// The fluid solver (solver/fluid_solver.hpp): in 2D a wall-bounded flow gives bitwise the fluid
+// of Solver, step for step (the two time loops cannot drift apart); in 3D, on the box scene
+// (scene/box3.hpp), a closed box of fluid under gravity stays at rest with the hydrostatic
+// pressure, and start-up flow in a square duct follows the series solution.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "case_builders.hpp"
+#include "particula/analytic/solutions.hpp"
+#include "particula/scene/box3.hpp"
+#include "particula/scene/scene.hpp"
+#include "particula/solver/fluid_solver.hpp"
+#include "particula/solver/solver.hpp"
+
+using namespace particula;
+using namespace particula::cases;
+
+namespace {
+
+template <class T>
+bool bitwise_equal(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+/// Steps the case with Solver and with FluidSolverOf<2> and expects the same fluid after each step.
+void expect_same_fluid_as_solver(const Case& c, int steps) {
+  const Scene sc = build_scene(c);
+  Solver solver(sc.params, sc.domain, sc.particles, sc.groups);
+  FluidSolverOf<2> fluid(sc.params, sc.domain, sc.particles);
+  for (int s = 0; s < steps; ++s) {
+    ASSERT_FALSE(solver.step().has_value());
+    ASSERT_FALSE(fluid.step().has_value());
+    ASSERT_EQ(solver.last_dt(), fluid.last_dt()) << "step " << s;
+    const Particles &a = solver.particles(), &b = fluid.particles();
+    ASSERT_TRUE(bitwise_equal(a.x, b.x)) << "step " << s;
+    ASSERT_TRUE(bitwise_equal(a.v, b.v)) << "step " << s;
+    ASSERT_TRUE(bitwise_equal(a.rho, b.rho)) << "step " << s;
+    ASSERT_TRUE(bitwise_equal(a.p, b.p)) << "step " << s;
+  }
+}
+
+/// The fluid and numerics of a 3D case: water-like, default numerics.
+FluidParamsOf<3> fluid3(real d0, real rho0, real nu, real c) {
+  const PhysicsParams defaults = physics_params(default_case());
+  FluidParamsOf<3> p;
+  const FluidParamsOf<2>& d = defaults;
+  p.d0 = d0;
+  p.h = default_case().h_over_d0 * d0;
+  p.rho0 = rho0;
+  p.nu = nu;
+  p.c = c;
+  p.cfl = d.cfl;
+  p.fatehi_manzari = d.fatehi_manzari;
+  p.zeroth_order_gradient = d.zeroth_order_gradient;
+  p.single_layer = d.single_layer;
+  p.kernel_normals = d.kernel_normals;
+  p.rhie_chow_factor = d.rhie_chow_factor;
+  p.odd_even_damping = d.odd_even_damping;
+  p.shifting_beta = d.shifting_beta;
+  p.surface_guard = d.surface_guard;
+  p.film_gap = d.film_gap;
+  p.wall_pressure_sweeps = d.wall_pressure_sweeps;
+  p.rho_min_ratio = d.rho_min_ratio;
+  p.rho_max_ratio = d.rho_max_ratio;
+  p.reorder_interval = d.reorder_interval;
+  return p;
+}
+
+}  // namespace
+
+TEST(FluidSolver, TwoDimensionalWallFlowsAreBitwiseSolvers) {
+  Case box = closed_box(0.01, 0.008, 5e-4);  // hydrostatic, with box corners
+  box.gravity = {0, -9.81};
+  box.c = 5;
+  expect_same_fluid_as_solver(box, 25);
+  expect_same_fluid_as_solver(startup_channel(20, 0, 1e-4), 25);  // body force, periodic
+}
+
+TEST(FluidSolver, ClosedBoxUnderGravityStaysAtRestIn3D) {
+  const real L = 0.01, d0 = L / 10, g = 9.81, c = 5;
+  BoxSpec3 spec;
+  spec.lo = {0, 0, 0};
+  spec.hi = {L, 0.8 * L, 1.2 * L};
+  spec.d0 = d0;
+  spec.rho0 = 1000;
+  BoxScene3 sc = build_box3(spec);
+  // the hydrostatic state: P = rho0 g (H - z) at the particles, rho from the equation of state
+  const real H = spec.hi.z;
+  for (std::size_t i = 0; i < sc.particles.size(); ++i) {
+    sc.particles.p[i] = spec.rho0 * g * (H - sc.particles.x[i].z);
+    sc.particles.rho[i] = spec.rho0 + sc.particles.p[i] / (c * c);
+    sc.particles.m[i] *= sc.particles.rho[i] / spec.rho0;
+  }
+  FluidParamsOf<3> prm = fluid3(d0, spec.rho0, 1e-6, c);
+  prm.gravity = {0, 0, -g};
+  prm.gravity_in_fluid = true;
+  FluidSolverOf<3> solver(prm, sc.domain, sc.particles);
+  while (solver.time() < 0.005) ASSERT_FALSE(solver.step().has_value()) << "t = " << solver.time();
+  const Particles3& P = solver.particles();
+  real vmax = 0, perr = 0;
+  for (std::size_t i = P.n_boundary; i < P.size(); ++i) {
+    vmax = std::fmax(vmax, norm(P.v[i]));
+    perr = std::fmax(perr, std::fabs(P.p[i] - spec.rho0 * g * (H - P.x[i].z)));
+  }
+  const real p_bottom = spec.rho0 * g * H;
+  std::printf("3D hydrostatic box: %lld steps, max |V| %.3g m/s (%.3g of sqrt(g H)), max |P - P_h| %.3g of rho0 g H\n",
+              static_cast<long long>(solver.step_count()), vmax, vmax / std::sqrt(g * H), perr / p_bottom);
+  EXPECT_LT(vmax, 1e-3 * std::sqrt(g * H));
+  EXPECT_LT(perr, 2e-2 * p_bottom);
+}
+
+TEST(FluidSolver, SquareDuctStartUpFollowsTheSeriesSolutionIn3D) {
+  // Morris-like parameters (reference/README.md) in a duct of side L, 10 particles across,
+  // periodic along x (8 spacings long), driven by F along x.
+  const real L = 1e-3, d0 = L / 10, F = 1e-4, nu = 1e-6;
+  BoxSpec3 spec;
+  spec.lo = {0, 0, 0};
+  spec.hi = {8 * d0, L, L};
+  spec.periodic[0] = true;
+  spec.d0 = d0;
+  spec.rho0 = 1000;
+  const BoxScene3 sc = build_box3(spec);
+  FluidParamsOf<3> prm = fluid3(d0, spec.rho0, nu, 2.5e-4);
+  prm.body_force = {F, 0, 0};
+  FluidSolverOf<3> solver(prm, sc.domain, sc.particles);
+  const real u_max = analytic::duct_startup(0.5 * L, 0.5 * L, 1e3, L, L, F, nu);
+  for (const real t_check : {0.02, 0.1}) {
+    while (solver.time() < t_check)
+      ASSERT_FALSE(solver.step_to(t_check).has_value()) << "t = " << solver.time();
+    const Particles3& P = solver.particles();
+    real e2 = 0, transverse = 0;
+    std::size_t n = 0;
+    for (std::size_t i = P.n_boundary; i < P.size(); ++i) {
+      const real u = analytic::duct_startup(P.x[i].y, P.x[i].z, solver.time(), L, L, F, nu);
+      e2 += (P.v[i].x - u) * (P.v[i].x - u);
+      transverse = std::fmax(transverse, std::hypot(P.v[i].y, P.v[i].z));
+      ++n;
+    }
+    const real err = std::sqrt(e2 / n) / u_max;
+    std::printf("duct at t = %g s (%lld steps): rms error %.3g of u_max, largest transverse speed %.3g of u_max\n",
+                solver.time(), static_cast<long long>(solver.step_count()), err, transverse / u_max);
+    EXPECT_LT(err, 0.01) << "t = " << t_check;
+    EXPECT_LT(transverse, 1e-6 * u_max) << "t = " << t_check;
+  }
+}
