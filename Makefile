@@ -3,7 +3,7 @@
 #   make test   installs what is missing, builds all of Release, runs the tests (CTest)
 JOBS ?= $(shell nproc)
 
-.PHONY: deps configure build build-cli demo test test-sanitize bench bench-cases bench-bodies clean
+.PHONY: deps configure build build-cli demo test test-sanitize bench bench-cases bench-bodies bench-3d clean
 
 deps:
 	scripts/install-deps
@@ -65,6 +65,15 @@ BENCH_ADVANCE ?= 0.04
 BENCH_ROUNDS ?= 3
 bench-bodies: build
 	python3 bench/bodies_cost.py --bodies 1000 --rounds $(BENCH_ROUNDS) --steps 30 --advance $(BENCH_ADVANCE) $(BENCH_ARGS)
+
+# 3D with the fluid solver (no case file yet): start-up flow in a square duct at 10, 20 and 40
+# particles across against the series solution, with the 2D channel's cost per pair alongside
+# (--plates), then Stokes flow through a simple cubic array of spheres against Zick & Homsy at
+# 8 and 12 particles across a sphere. About 15 minutes on 2 cores. BENCH3_ARGS adds options,
+# e.g. --threads 1.
+bench-3d: build
+	./build/release/bench/particula_bench_duct3 --across 10 --across 20 --across 40 --plates $(BENCH3_ARGS)
+	./build/release/bench/particula_bench_sphere_array3 --c 0.064 --across 8 --across 12 $(BENCH3_ARGS)
 
 clean:
 	rm -rf build

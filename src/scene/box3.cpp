@@ -9,6 +9,15 @@ namespace particula {
 
 namespace {
 
+// The volumes of wall particles in lattice cells (docs/method.md, "Three dimensions"): a face
+// particle d0 dA, one cell, as a 2D wall particle's d0 ds, so that the zeroth kernel moment
+// s = sum_j w_j gradW_ij of the fluid particle next to the face nearly vanishes (0.007 / d0 at
+// h = 2.6 d0 on the regular lattice; half a cell gives 0.23 / d0, and a particle pushed against
+// the wall would be drawn in rather than compressed); an edge particle one cell (s of the fluid
+// particle at the edge 0.015 / d0), a corner particle 1.25 cells (0.004 / d0 at the corner),
+// the 3D counterpart of the 2D box corner's volume factor (M.6).
+constexpr real kFaceVolume = 1, kEdgeVolume = 1, kCornerVolume = 1.25;
+
 real component(Vec3 v, int a) { return a == 0 ? v.x : (a == 1 ? v.y : v.z); }
 
 Vec3 with(Vec3 v, int a, real value) {
@@ -38,9 +47,9 @@ BoxScene3 build_box3(const BoxSpec3& spec) {
   s.spacing = {dx[0], dx[1], dx[2]};
   const real cell = dx[0] * dx[1] * dx[2];
   Particles3& P = s.particles;
-  const auto add = [&](Vec3 x, real volume, Vec3 normal, real ds, std::int32_t group, Kind kind) {
+  const auto add = [&](Vec3 x, real volume, Vec3 normal, real ds, std::int32_t group, Kind kind, Vec3 v) {
     P.x.push_back(x);
-    P.v.push_back({});
+    P.v.push_back(v);
     P.rho.push_back(spec.rho0);
     P.p.push_back(spec.p0);
     P.m.push_back(spec.rho0 * volume);
@@ -59,6 +68,14 @@ BoxScene3 build_box3(const BoxSpec3& spec) {
   const auto centre = [&](int a, int i) { return component(spec.lo, a) + (i + 0.5) * dx[a]; };
   const auto side = [&](int a, bool far) { return far ? component(spec.hi, a) : component(spec.lo, a); };
   const auto face_group = [&](int a, bool far) { return static_cast<std::int32_t>(2 * a + (far ? 1 : 0)); };
+  for (int f = 0; f < 6; ++f)
+    if (component(spec.face_velocity[f], f / 2) != 0)
+      throw std::invalid_argument("build_box3: a face may only move along itself");
+  // the common velocity of the faces (a, far_a) and (b, far_b), or rest
+  const auto shared = [&](int a, bool far_a, int b, bool far_b) {
+    const Vec3 va = spec.face_velocity[face_group(a, far_a)], vb = spec.face_velocity[face_group(b, far_b)];
+    return va.x == vb.x && va.y == vb.y && va.z == vb.z ? va : Vec3{};
+  };
   // faces: axis a at lo or hi, the other two on the cell centres
   for (int a = 0; a < 3; ++a) {
     if (spec.periodic[a]) continue;
@@ -68,7 +85,8 @@ BoxScene3 build_box3(const BoxSpec3& spec) {
         for (int k = 0; k < n[e]; ++k) {
           const Vec3 x = with(with(with(Vec3{}, a, side(a, far)), b, centre(b, j)), e, centre(e, k));
           const Vec3 normal = with(Vec3{}, a, far ? -1 : 1);
-          add(x, 0.5 * cell, normal, dx[b] * dx[e], face_group(a, far), Kind::Boundary);
+          add(x, kFaceVolume * cell, normal, dx[b] * dx[e], face_group(a, far), Kind::Boundary,
+              spec.face_velocity[face_group(a, far)]);
         }
   }
   // edges: axes b and e closed (at lo or hi), axis a on the cell centres
@@ -81,7 +99,7 @@ BoxScene3 build_box3(const BoxSpec3& spec) {
       const std::int32_t group = face_group(std::min(b, e), std::min(b, e) == b ? far_b : far_e);
       for (int i = 0; i < n[a]; ++i) {
         const Vec3 x = with(with(with(Vec3{}, a, centre(a, i)), b, side(b, far_b)), e, side(e, far_e));
-        add(x, 0.25 * cell, normal, 0, group, Kind::Boundary);
+        add(x, kEdgeVolume * cell, normal, 0, group, Kind::Boundary, shared(b, far_b, e, far_e));
       }
     }
   }
@@ -90,13 +108,39 @@ BoxScene3 build_box3(const BoxSpec3& spec) {
     for (int corner = 0; corner < 8; ++corner) {
       const bool far[3] = {(corner & 1) != 0, (corner & 2) != 0, (corner & 4) != 0};
       const Vec3 x{side(0, far[0]), side(1, far[1]), side(2, far[2])};
-      const Vec3 normal = Vec3{far[0] ? -1.0 : 1.0, far[1] ? -1.0 : 1.0, far[2] ? -1.0 : 1.0} / std::sqrt(3.0);
-      add(x, 0.125 * cell, normal, 0, face_group(0, far[0]), Kind::Boundary);
+      const Vec3 normal =
+          Vec3{far[0] ? -1.0 : 1.0, far[1] ? -1.0 : 1.0, far[2] ? -1.0 : 1.0} / std::sqrt(3.0);
+      const Vec3 v = shared(0, far[0], 1, far[1]);
+      const Vec3 w = shared(1, far[1], 2, far[2]);
+      add(x, kCornerVolume * cell, normal, 0, face_group(0, far[0]), Kind::Boundary,
+          v.x == w.x && v.y == w.y && v.z == w.z ? v : Vec3{});
     }
+  // the fixed solids' surfaces
+  for (std::size_t k = 0; k < spec.solids.size(); ++k) {
+    const FixedSolid3& solid = spec.solids[k];
+    const Quat q = normalized(solid.orientation);
+    const Mat3 R = rotation_matrix(q);
+    for (const SurfaceSample3& smp : solid.shape.sample_surface(spec.d0))
+      add(s.domain.wrap(solid.position + R * smp.x), kFaceVolume * smp.dA * spec.d0, R * smp.normal, smp.dA,
+          static_cast<std::int32_t>(6 + k), Kind::Boundary, {});
+  }
   P.n_boundary = P.x.size();
+  // the fluid lattice, outside the solids by d0 / 2 at least (the solid's own distance, taken to
+  // the nearest periodic image of its position)
+  const auto clear_of_solids = [&](Vec3 x) {
+    for (const FixedSolid3& solid : spec.solids) {
+      const Vec3 r = s.domain.separation(x, solid.position);
+      if (solid.shape.signed_distance(rotate_back(normalized(solid.orientation), r)) < 0.5 * spec.d0)
+        return false;
+    }
+    return true;
+  };
   for (int i = 0; i < n[0]; ++i)
     for (int j = 0; j < n[1]; ++j)
-      for (int k = 0; k < n[2]; ++k) add({centre(0, i), centre(1, j), centre(2, k)}, cell, {}, 0, -1, Kind::Fluid);
+      for (int k = 0; k < n[2]; ++k) {
+        const Vec3 x{centre(0, i), centre(1, j), centre(2, k)};
+        if (clear_of_solids(x)) add(x, cell, {}, 0, -1, Kind::Fluid, {});
+      }
   P.next_id = static_cast<std::int64_t>(P.size());
   return s;
 }

@@ -31,7 +31,11 @@ real open_buffer_margin(const PhysicsParams& prm) {
 }  // namespace
 
 CpuBackend::CpuBackend(const PhysicsParams& prm, const Domain& domain, const WendlandC2& kernel, Particles& P)
-    : prm_(prm), domain_(domain), kernel_(kernel), P_(P), sweeps_(prm, domain, kernel, P, open_buffer_margin(prm)) {}
+    : prm_(prm),
+      domain_(domain),
+      kernel_(kernel),
+      P_(P),
+      sweeps_(prm, domain, kernel, P, open_buffer_margin(prm)) {}
 
 bool CpuBackend::in_open_buffer(Vec2 x) const {
   for (const OpenZone& z : prm_.open)

@@ -5,8 +5,6 @@
 // weigh on the compiler's inlining budget of the 2D ones.
 #pragma once
 
-#include "particula/solver/cpu_sweeps.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -16,6 +14,7 @@
 
 #include "particula/boundary/wall_pressure.hpp"
 #include "particula/fluid/fluid.hpp"
+#include "particula/solver/cpu_sweeps.hpp"
 #include "particula/sph/operators.hpp"
 #include "phase_timer.hpp"
 

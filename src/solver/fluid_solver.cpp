@@ -18,19 +18,25 @@ std::string unhealthy_particle(const ParticlesOf<D>& P, std::size_t i, const Flu
     return fmt::format("non-finite value (NaN or Inf) at {} particle {}", kind, id);
   const real lo = prm.rho_min_ratio * prm.rho0, hi = prm.rho_max_ratio * prm.rho0;
   if (P.rho[i] < lo || P.rho[i] > hi)
-    return fmt::format("density {:.6g} kg/m^3 of {} particle {} outside [{:.4g}, {:.4g}] (rho0 x [{:g}, {:g}])",
-                       P.rho[i], kind, id, lo, hi, prm.rho_min_ratio, prm.rho_max_ratio);
+    return fmt::format(
+        "density {:.6g} kg/m^3 of {} particle {} outside [{:.4g}, {:.4g}] (rho0 x [{:g}, {:g}])", P.rho[i],
+        kind, id, lo, hi, prm.rho_min_ratio, prm.rho_max_ratio);
   return fmt::format("{} particle {} left the closed domain", kind, id);
 }
 
 template <int D>
-FluidSolverOf<D>::FluidSolverOf(const FluidParamsOf<D>& params, const DomainOf<D>& domain, ParticlesOf<D> particles)
-    : prm_(params), domain_(domain), P_(std::move(particles)), kernel_(params.h), sweeps_(prm_, domain_, kernel_, P_) {
-  // the walls are at rest: their velocity and acceleration (P.20) are zero; a wall particle on a
-  // periodic side is taken into the box as a rigid group's placement takes it (Solver)
+FluidSolverOf<D>::FluidSolverOf(const FluidParamsOf<D>& params, const DomainOf<D>& domain,
+                                ParticlesOf<D> particles)
+    : prm_(params),
+      domain_(domain),
+      P_(std::move(particles)),
+      kernel_(params.h),
+      sweeps_(prm_, domain_, kernel_, P_) {
+  // the walls keep their places and velocities (at rest, or a plane sliding along itself): their
+  // acceleration (P.20) is zero; a wall particle on a periodic side is taken into the box as a
+  // rigid group's placement takes it (Solver)
   for (std::size_t i = 0; i < P_.n_boundary; ++i) {
     P_.x[i] = domain_.wrap(P_.x[i]);
-    P_.v[i] = Vec<D>{};
     P_.acc[i] = Vec<D>{};
   }
   sweeps_.refresh_geometry(counters_, times_);
@@ -73,10 +79,11 @@ std::optional<FailureOf<D>> FluidSolverOf<D>::advance(real dt_cap, real land_at)
     limit_ = st.limit;
     const real own = case_dt(prm_);
     if (dt_ < kTimeStepCollapse * own)
-      return FailureOf<D>{fmt::format("the time step collapsed to {:.3g} s, below {:g} of the case's {:.3g} s "
-                                      "(cfl d0 / c, cfl d0^2 / nu)",
-                                      dt_, kTimeStepCollapse, own),
-                          -1, Vec<D>{}};
+      return FailureOf<D>{
+          fmt::format("the time step collapsed to {:.3g} s, below {:g} of the case's {:.3g} s "
+                      "(cfl d0 / c, cfl d0^2 / nu)",
+                      dt_, kTimeStepCollapse, own),
+          -1, Vec<D>{}};
     if (dt_cap > 0 && dt_cap <= dt_) {
       dt_ = dt_cap;
       limit_ = StepLimit::Landing;

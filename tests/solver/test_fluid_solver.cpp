@@ -43,30 +43,13 @@ void expect_same_fluid_as_solver(const Case& c, int steps) {
 }
 
 /// The fluid and numerics of a 3D case: water-like, default numerics.
-FluidParamsOf<3> fluid3(real d0, real rho0, real nu, real c) {
-  const PhysicsParams defaults = physics_params(default_case());
-  FluidParamsOf<3> p;
-  const FluidParamsOf<2>& d = defaults;
-  p.d0 = d0;
-  p.h = default_case().h_over_d0 * d0;
-  p.rho0 = rho0;
-  p.nu = nu;
-  p.c = c;
-  p.cfl = d.cfl;
-  p.fatehi_manzari = d.fatehi_manzari;
-  p.zeroth_order_gradient = d.zeroth_order_gradient;
-  p.single_layer = d.single_layer;
-  p.kernel_normals = d.kernel_normals;
-  p.rhie_chow_factor = d.rhie_chow_factor;
-  p.odd_even_damping = d.odd_even_damping;
-  p.shifting_beta = d.shifting_beta;
-  p.surface_guard = d.surface_guard;
-  p.film_gap = d.film_gap;
-  p.wall_pressure_sweeps = d.wall_pressure_sweeps;
-  p.rho_min_ratio = d.rho_min_ratio;
-  p.rho_max_ratio = d.rho_max_ratio;
-  p.reorder_interval = d.reorder_interval;
-  return p;
+FluidParamsOf<3> fluid3(real d0, real rho0, real nu, real c_sound) {
+  Case c = default_case();
+  c.d0 = d0;
+  c.rho0 = rho0;
+  c.nu = nu;
+  c.c = c_sound;
+  return fluid_scalars<3>(physics_params(c));
 }
 
 }  // namespace
@@ -106,8 +89,10 @@ TEST(FluidSolver, ClosedBoxUnderGravityStaysAtRestIn3D) {
     perr = std::fmax(perr, std::fabs(P.p[i] - spec.rho0 * g * (H - P.x[i].z)));
   }
   const real p_bottom = spec.rho0 * g * H;
-  std::printf("3D hydrostatic box: %lld steps, max |V| %.3g m/s (%.3g of sqrt(g H)), max |P - P_h| %.3g of rho0 g H\n",
-              static_cast<long long>(solver.step_count()), vmax, vmax / std::sqrt(g * H), perr / p_bottom);
+  std::printf(
+      "3D hydrostatic box: %lld steps, max |V| %.3g m/s (%.3g of sqrt(g H)), max |P - P_h| %.3g of rho0 g "
+      "H\n",
+      static_cast<long long>(solver.step_count()), vmax, vmax / std::sqrt(g * H), perr / p_bottom);
   EXPECT_LT(vmax, 1e-3 * std::sqrt(g * H));
   EXPECT_LT(perr, 2e-2 * p_bottom);
 }
@@ -140,9 +125,43 @@ TEST(FluidSolver, SquareDuctStartUpFollowsTheSeriesSolutionIn3D) {
       ++n;
     }
     const real err = std::sqrt(e2 / n) / u_max;
-    std::printf("duct at t = %g s (%lld steps): rms error %.3g of u_max, largest transverse speed %.3g of u_max\n",
-                solver.time(), static_cast<long long>(solver.step_count()), err, transverse / u_max);
+    std::printf(
+        "duct at t = %g s (%lld steps): rms error %.3g of u_max, largest transverse speed %.3g of u_max\n",
+        solver.time(), static_cast<long long>(solver.step_count()), err, transverse / u_max);
     EXPECT_LT(err, 0.01) << "t = " << t_check;
     EXPECT_LT(transverse, 1e-6 * u_max) << "t = " << t_check;
+  }
+}
+
+TEST(FluidSolver, StartUpCouetteBetweenPlatesIn3D) {
+  // the upper plate (+y face) slides along x at V0 from t = 0; periodic along x and z
+  const real L = 1e-3, d0 = L / 10, V0 = 1.25e-5, nu = 1e-6;
+  BoxSpec3 spec;
+  spec.lo = {0, 0, 0};
+  spec.hi = {8 * d0, L, 8 * d0};
+  spec.periodic[0] = true;
+  spec.periodic[2] = true;
+  spec.d0 = d0;
+  spec.rho0 = 1000;
+  spec.face_velocity[3] = {V0, 0, 0};
+  const BoxScene3 sc = build_box3(spec);
+  FluidSolverOf<3> solver(fluid3(d0, spec.rho0, nu, 2.5e-4), sc.domain, sc.particles);
+  for (const real t_check : {0.02, 0.1}) {
+    while (solver.time() < t_check)
+      ASSERT_FALSE(solver.step_to(t_check).has_value()) << "t = " << solver.time();
+    const Particles3& P = solver.particles();
+    real e2 = 0, across = 0;
+    std::size_t n = 0;
+    for (std::size_t i = P.n_boundary; i < P.size(); ++i) {
+      const real u = analytic::couette_startup(P.x[i].y, solver.time(), L, V0, nu);
+      e2 += (P.v[i].x - u) * (P.v[i].x - u);
+      across = std::fmax(across, std::hypot(P.v[i].y, P.v[i].z));
+      ++n;
+    }
+    const real err = std::sqrt(e2 / n) / V0;
+    std::printf("3D Couette at t = %g s: rms error %.3g of V0, largest speed across %.3g of V0\n",
+                solver.time(), err, across / V0);
+    EXPECT_LT(err, 0.01) << "t = " << t_check;
+    EXPECT_LT(across, 1e-6 * V0) << "t = " << t_check;
   }
 }

@@ -35,7 +35,8 @@ TEST(Sweeps3, VelocityDerivativesAreExactForLinearFieldsAndTheLaplacianForQuadra
   std::vector<Mat3> L(n);
   std::vector<Vec3> lap(n);
   std::vector<real> div(n);
-  for (std::size_t i = 0; i < n; ++i) store_velocity_derivatives(box.c, i, v.data(), L.data(), lap.data(), div.data());
+  for (std::size_t i = 0; i < n; ++i)
+    store_velocity_derivatives(box.c, i, v.data(), L.data(), lap.data(), div.data());
   for (std::size_t i = 0; i < n; ++i) {
     EXPECT_LT(max_abs(L[i] - kA), 1e-10) << i;
     EXPECT_NEAR(div[i], trace(L[i]), 1e-15) << i;
@@ -84,10 +85,11 @@ TEST(Sweeps3, HydrostaticBoxIsAtRestAndP20GivesTheWallsTheHydrostaticPressure) {
   std::vector<Mat3> L(n);
   for (std::size_t i = 0; i < n; ++i) G[i] = pressure_gradient_at(box.c, i, p.data(), rho.data());
   for (std::size_t i = 0; i < n; ++i) EXPECT_LT(norm(G[i] - g), 1e-10 * norm(g)) << i;
-  for (std::size_t i = 0; i < n; ++i) store_velocity_derivatives(box.c, i, v.data(), L.data(), lap.data(), div.data());
   for (std::size_t i = 0; i < n; ++i)
-    rhie_chow_and_momentum_at(box.c, i, p.data(), rho.data(), G.data(), L.data(), lap.data(), v_start.data(), s,
-                              rc.data(), v.data(), odd_even.data());
+    store_velocity_derivatives(box.c, i, v.data(), L.data(), lap.data(), div.data());
+  for (std::size_t i = 0; i < n; ++i)
+    rhie_chow_and_momentum_at(box.c, i, p.data(), rho.data(), G.data(), L.data(), lap.data(), v_start.data(),
+                              s, rc.data(), v.data(), odd_even.data());
   // (P.16) the bracket of a linear P is 0 (its scale here |g| / d0 = 100 m/s^2/m)
   for (std::size_t i = box.nb; i < n; ++i) {
     EXPECT_LT(std::fabs(rc[i]), 1e-6) << i;
@@ -95,16 +97,17 @@ TEST(Sweeps3, HydrostaticBoxIsAtRestAndP20GivesTheWallsTheHydrostaticPressure) {
   }
   std::vector<real> rho_new(n), p_new(n);
   for (std::size_t i = 0; i < n; ++i)
-    derivatives_and_continuity_at(box.c, i, v.data(), rho.data(), rc.data(), s, L.data(), lap.data(), div.data(),
-                                  rho_new.data(), p_new.data());
+    derivatives_and_continuity_at(box.c, i, v.data(), rho.data(), rc.data(), s, L.data(), lap.data(),
+                                  div.data(), rho_new.data(), p_new.data());
   for (std::size_t i = box.nb; i < n; ++i) EXPECT_NEAR(rho_new[i], s.rho0, 1e-10 * s.rho0) << i;
 
   // P.20: every wall particle, from the exact pressures around it, with no surface motion
   int solved = 0;
   for (std::size_t i = 0; i < box.nb; ++i) {
     real p_out = std::numeric_limits<real>::quiet_NaN();
-    const WallPressureOutcome o = wall_pressure_at(box.c, i, p.data(), rho.data(), box.normal[i], Vec3{}, Vec3{}, g,
-                                                   wall_pressure_min_den(s.rho0, box.h), 0, s.p0, p_out);
+    const WallPressureOutcome o =
+        wall_pressure_at(box.c, i, p.data(), rho.data(), box.normal[i], Vec3{}, Vec3{}, g,
+                         wall_pressure_min_den(s.rho0, box.h), 0, s.p0, p_out);
     EXPECT_NE(o, WallPressureOutcome::Kept) << i;
     solved += o == WallPressureOutcome::Solved;
     EXPECT_NEAR(p_out, p[i], 1e-9 * std::fabs(p[i])) << i;
@@ -119,16 +122,20 @@ TEST(Sweeps3, OddEvenDampingVanishesOnLinearFieldsAndOpposesACheckerboard) {
   std::vector<Mat3> L(n);
   std::vector<real> div(n);
   for (std::size_t i = 0; i < n; ++i) v[i] = linear_velocity(box.x[i]);
-  for (std::size_t i = 0; i < n; ++i) store_velocity_derivatives(box.c, i, v.data(), L.data(), lap.data(), div.data());
-  for (std::size_t i = box.nb; i < n; ++i) EXPECT_LT(norm(odd_even_velocity_at(box.c, i, L.data(), lap[i])), 1e-8) << i;
+  for (std::size_t i = 0; i < n; ++i)
+    store_velocity_derivatives(box.c, i, v.data(), L.data(), lap.data(), div.data());
+  for (std::size_t i = box.nb; i < n; ++i)
+    EXPECT_LT(norm(odd_even_velocity_at(box.c, i, L.data(), lap[i])), 1e-8) << i;
   // an odd-even mode of the lattice (x velocity +-1 on alternate cells): the damping pulls each
   // interior particle's velocity towards its neighbours' mean, against its own sign
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 q = box.x[i] / box.d0;
-    const long parity = std::lround(std::floor(q.x)) + std::lround(std::floor(q.y)) + std::lround(std::floor(q.z));
+    const long parity =
+        std::lround(std::floor(q.x)) + std::lround(std::floor(q.y)) + std::lround(std::floor(q.z));
     v[i] = i < box.nb ? Vec3{} : Vec3{parity % 2 == 0 ? 1.0 : -1.0, 0, 0};
   }
-  for (std::size_t i = 0; i < n; ++i) store_velocity_derivatives(box.c, i, v.data(), L.data(), lap.data(), div.data());
+  for (std::size_t i = 0; i < n; ++i)
+    store_velocity_derivatives(box.c, i, v.data(), L.data(), lap.data(), div.data());
   int interior = 0;
   for (std::size_t i = box.nb; i < n; ++i) {
     if (box.where[i] != Where::Interior) continue;
@@ -161,7 +168,8 @@ TEST(Sweeps3, EndOfStepAndHealthCheckInThreeDimensions) {
   // fluid: mean velocity, position advanced and wrapped along the periodic z axis
   Vec3 x{0.5, 0.5, 0.99}, v{0, 0, 2};
   real rho = 1002, p = 3;
-  const real v2 = end_of_step_update(5, 1, Kind::Fluid, domain, 0.01, true, Vec3{0, 0, 1}, 1000, 1, x, v, rho, p);
+  const real v2 =
+      end_of_step_update(5, 1, Kind::Fluid, domain, 0.01, true, Vec3{0, 0, 1}, 1000, 1, x, v, rho, p);
   EXPECT_DOUBLE_EQ(v.z, 1.5);
   EXPECT_NEAR(x.z, 0.005, 1e-12);
   EXPECT_DOUBLE_EQ(rho, 1001);
@@ -174,7 +182,7 @@ TEST(Sweeps3, EndOfStepAndHealthCheckInThreeDimensions) {
   lim.h = 0.05;
   lim.domain = Domain3{{0, 0, 0}, {1, 1, 1}, false, false, false};
   EXPECT_FALSE(particle_unhealthy(true, Vec3{0.5, 0.5, 0.5}, Vec3{}, 1000, 0, lim));
-  EXPECT_TRUE(particle_unhealthy(true, Vec3{0.5, 0.5, 1.1}, Vec3{}, 1000, 0, lim));   // beyond z = 1 + h
+  EXPECT_TRUE(particle_unhealthy(true, Vec3{0.5, 0.5, 1.1}, Vec3{}, 1000, 0, lim));    // beyond z = 1 + h
   EXPECT_FALSE(particle_unhealthy(true, Vec3{0.5, 0.5, 1.04}, Vec3{}, 1000, 0, lim));  // within h
   EXPECT_TRUE(particle_unhealthy(false, Vec3{0.5, 0.5, 0.5}, Vec3{0, 0, std::nan("")}, 1000, 0, lim));
   EXPECT_TRUE(particle_unhealthy(true, Vec3{0.5, 0.5, 0.5}, Vec3{}, 1200, 0, lim));

@@ -68,7 +68,7 @@ PARTICULA_HD void offer_surface(NearestSurfaces& s, std::uint32_t j, std::int32_
 /// the two sides that meet there.
 template <int D>
 struct SurfaceTangentOf {
-  Vec<D> x, n, v;    // position, outward unit normal (into the fluid; the bisector at a corner), velocity
+  Vec<D> x, n, v;  // position, outward unit normal (into the fluid; the bisector at a corner), velocity
   real wedge = 0;  // at a convex corner of the solid: half the angle between the two sides' normals
   real reach = 0;  // half-length of the stretch of tangent line that stands for the surface (0: unbounded)
 };
@@ -114,7 +114,8 @@ PARTICULA_HD SurfaceTangentOf<D> surface_at(const SurfaceArraysOf<D>& s, std::ui
 
 /// The surfaces of slots a and b.
 template <int D>
-PARTICULA_HD NearSurfacesOf<D> gather_surfaces(std::uint32_t a, std::uint32_t b, const SurfaceArraysOf<D>& s) {
+PARTICULA_HD NearSurfacesOf<D> gather_surfaces(std::uint32_t a, std::uint32_t b,
+                                               const SurfaceArraysOf<D>& s) {
   NearSurfacesOf<D> out;
   if (a != kNoSurface) out.s[out.count++] = surface_at(s, a);
   if (b != kNoSurface) out.s[out.count++] = surface_at(s, b);
@@ -174,7 +175,8 @@ PARTICULA_HD real surface_distance(const Domain& domain, Vec2 x, const SurfaceTa
 /// rotationally symmetric set with the 2D wedge's normal cone: |r| within `wedge` of n, else
 /// r . n1 with n1 = n cos(wedge) + t sin(wedge) and t the direction of r's tangential part (in
 /// the plane of n and r this is the 2D side on r's side, max(r . n1, r . n2) above).
-PARTICULA_HD real surface_distance(const DomainOf<3>& domain, Vec3 x, const SurfaceTangentOf<3>& s, Vec3& away) {
+PARTICULA_HD real surface_distance(const DomainOf<3>& domain, Vec3 x, const SurfaceTangentOf<3>& s,
+                                   Vec3& away) {
   const Vec3 r = domain.separation(x, s.x);
   const real dn = dot(r, s.n);
   const Vec3 tangential = r - dn * s.n;
@@ -217,10 +219,11 @@ PARTICULA_HD bool facing(const SurfaceTangentOf<D>& a, const SurfaceTangentOf<D>
 
 /// The surface guard for one fluid particle (see the header comment). `keep` = d_keep in metres.
 template <int D>
-PARTICULA_HD GuardOutcome guard_surfaces(const NearSurfacesOf<D>& ns, real keep, const DomainOf<D>& domain, Vec<D>& x, Vec<D>& v) {
+PARTICULA_HD GuardOutcome guard_surfaces(const NearSurfacesOf<D>& ns, real keep, const DomainOf<D>& domain,
+                                         Vec<D>& x, Vec<D>& v) {
   if (ns.count == 0 || !(keep > 0)) return GuardOutcome::None;
   if (ns.count == 2 && facing(ns.s[0], ns.s[1])) {
-    const SurfaceTangentOf<D> &a = ns.s[0], &b = ns.s[1];
+    const SurfaceTangentOf<D>&a = ns.s[0], &b = ns.s[1];
     const real da = surface_distance(domain, x, a), db = surface_distance(domain, x, b);
     if (da + db < 2 * keep) {
       // A closing gap: midway between the two (measured along a's normal), moving with them.
@@ -250,7 +253,8 @@ PARTICULA_HD GuardOutcome guard_surfaces(const NearSurfacesOf<D>& ns, real keep,
 /// particle layers, and the particle's volume change is left out of the continuity equation in
 /// proportion: 0 for a gap of film_gap or more, 1 for film_gap / 2 or less, linear between.
 template <int D>
-PARTICULA_HD real film_fraction(const NearSurfacesOf<D>& ns, real film_gap, const DomainOf<D>& domain, Vec<D> x) {
+PARTICULA_HD real film_fraction(const NearSurfacesOf<D>& ns, real film_gap, const DomainOf<D>& domain,
+                                Vec<D> x) {
   if (ns.count < 2 || !(film_gap > 0) || !facing(ns.s[0], ns.s[1])) return 0;
   const real gap = surface_distance(domain, x, ns.s[0]) + surface_distance(domain, x, ns.s[1]);
   const real f = (film_gap - gap) / (0.5 * film_gap);
@@ -265,7 +269,8 @@ PARTICULA_HD real film_fraction(const NearSurfacesOf<D>& ns, real film_gap, cons
 /// between two solids set the P.20 pressures of the surface particles around it, whose pressure
 /// gradient in turn drove the particle, a loop that shot it out at several times the sound speed;
 /// and its continuity equation, with no fluid around it, compressed it in a closing gap.
-PARTICULA_HD bool isolated(real others_fluid_support, real one_neighbour_support, std::uint32_t nearest_surface) {
+PARTICULA_HD bool isolated(real others_fluid_support, real one_neighbour_support,
+                           std::uint32_t nearest_surface) {
   return nearest_surface != kNoSurface && others_fluid_support < one_neighbour_support;
 }
 
@@ -273,7 +278,8 @@ PARTICULA_HD bool isolated(real others_fluid_support, real one_neighbour_support
 /// particle spacing): the shift's component into that surface (against surface_distance's
 /// `away`) is removed.
 template <int D>
-PARTICULA_HD Vec<D> limit_shift_at_surfaces(Vec<D> dr, const NearSurfacesOf<D>& ns, real range, const DomainOf<D>& domain, Vec<D> x) {
+PARTICULA_HD Vec<D> limit_shift_at_surfaces(Vec<D> dr, const NearSurfacesOf<D>& ns, real range,
+                                            const DomainOf<D>& domain, Vec<D> x) {
   for (int k = 0; k < ns.count; ++k) {
     const SurfaceTangentOf<D>& s = ns.s[k];
     Vec<D> away;

@@ -6,8 +6,9 @@
 // instantiation gives a wall-bounded flow bitwise the same fluid as Solver (tested), so the two
 // cannot drift apart.
 //
-// The walls are the boundary block [0, n_boundary) of the particles: kind Boundary, at rest, with
-// their analytic normals (P.18 replaces them with kernel normals when asked for) and areas ds.
+// The walls are the boundary block [0, n_boundary) of the particles: kind Boundary, in place, at
+// rest or sliding along themselves with the velocity they start with (scene/box3.hpp), with their
+// analytic normals (P.18 replaces them with kernel normals when asked for) and areas ds.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +34,7 @@ template <int D>
 class FluidSolverOf {
  public:
   /// A fresh run: the wall pressure starts from P.20 iterated to convergence on the initial state.
+  /// The walls' velocities are theirs for the whole run.
   FluidSolverOf(const FluidParamsOf<D>& params, const DomainOf<D>& domain, ParticlesOf<D> particles);
   // The passes hold references to the solver's members: not copied, not moved.
   FluidSolverOf(const FluidSolverOf&) = delete;

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "particula/bodies/collision.hpp"
 #include "particula/boundary/open_boundary.hpp"
 #include "particula/case/case.hpp"
 #include "particula/core/types.hpp"
 #include "particula/core/types3.hpp"
 #include "particula/geometry/shape.hpp"
 #include "particula/geometry/wall_piece.hpp"
-#include "particula/bodies/collision.hpp"
 
 namespace particula {
 
@@ -67,6 +67,38 @@ struct FluidParamsOf {
   real rho_min_ratio{}, rho_max_ratio{};
   int reorder_interval{};  // steps between cell reorderings of the fluid block (kReorderInterval)
 };
+
+/// The scalar parameters and numerics of `from` for a fluid in D dimensions, its vectors (gravity,
+/// body force) left zero for the caller: a 3D fluid with a 2D case's numerics (the schema's
+/// defaults, physics_params of a Case) while cases are 2D.
+template <int D, int E>
+FluidParamsOf<D> fluid_scalars(const FluidParamsOf<E>& from) {
+  FluidParamsOf<D> p;
+  p.d0 = from.d0;
+  p.h = from.h;
+  p.rho0 = from.rho0;
+  p.nu = from.nu;
+  p.c = from.c;
+  p.p0 = from.p0;
+  p.gravity_in_fluid = from.gravity_in_fluid;
+  p.cfl = from.cfl;
+  p.dt_max = from.dt_max;
+  p.fatehi_manzari = from.fatehi_manzari;
+  p.zeroth_order_gradient = from.zeroth_order_gradient;
+  p.single_layer = from.single_layer;
+  p.kernel_normals = from.kernel_normals;
+  p.momentum_force = from.momentum_force;
+  p.rhie_chow_factor = from.rhie_chow_factor;
+  p.odd_even_damping = from.odd_even_damping;
+  p.shifting_beta = from.shifting_beta;
+  p.surface_guard = from.surface_guard;
+  p.film_gap = from.film_gap;
+  p.wall_pressure_sweeps = from.wall_pressure_sweeps;
+  p.rho_min_ratio = from.rho_min_ratio;
+  p.rho_max_ratio = from.rho_max_ratio;
+  p.reorder_interval = from.reorder_interval;
+  return p;
+}
 
 /// Everything the physics needs, in SI units (filled from a Case by the scene builder): the
 /// fluid's parameters and the 2D solids, contacts and open boundaries.

@@ -70,7 +70,7 @@ real body_force_dt(const FluidParamsOf<D>& prm) {
 template <int D>
 StableStep fluid_stable_step(const FluidParamsOf<D>& prm, real dlist, real vmax) {
   const real dmin = dlist > 0 && std::isfinite(dlist) ? dlist : prm.d0;
-  StableStep st{prm.cfl * dmin / (prm.c + vmax), StepLimit::Acoustic};               // P.30: Courant condition
+  StableStep st{prm.cfl * dmin / (prm.c + vmax), StepLimit::Acoustic};             // P.30: Courant condition
   if (prm.nu > 0) st.tighten(prm.cfl * dmin * dmin / prm.nu, StepLimit::Viscous);  // P.31: viscous diffusion
   if (prm.dt_max > 0) st.tighten(prm.dt_max, StepLimit::DtMax);
   return st;
