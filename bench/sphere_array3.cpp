@@ -5,10 +5,15 @@
 //
 //   particula_bench_sphere_array3 [--c C]... [--across N]... [--threads N]
 //
-// The flow is driven by a body force f on the fluid; in the steady state the spheres' drag
-// balances it, F = f sum_i m_i (the fluid's mass of the simulation). The run goes until U changes
-// by less than 1e-4 relative over one viscous time a^2 / nu, at Re = U 2a / nu of about 0.01,
-// with default numerics and a sound speed for Stokes flow (below).
+// The flow is driven by a body force f on the fluid, which is the mean pressure gradient
+// G = rho f of a pressure-driven flow through the array: the same velocity field. Zick & Homsy's F
+// is the force on a sphere in that flow, G L^3 (Hasimoto: the mean pressure gradient is n F, n
+// the number of spheres per volume); it holds the fluid's drag, rho f V_f (V_f the fluid's
+// volume, sum_i m_i / rho_i), and the mean pressure's push on the sphere's own volume. So
+// K = rho0 f L^3 / (6 pi mu a U). The lattice leaves the fluid out within d0 / 2 of the sphere:
+// the fluid's volume is short of (1 - c) L^3 by a shell that shrinks with d0 (printed). The run goes until U
+// changes by less than 1e-4 relative over one viscous time a^2 / nu, at Re = U 2a / nu of about 0.01, with
+// default numerics and a sound speed for Stokes flow (below).
 #include <omp.h>
 
 #include <chrono>
@@ -104,11 +109,8 @@ int main(int argc, char** argv) {
       for (std::size_t i = P.n_boundary; i < P.size(); ++i) q += P.m[i] / P.rho[i] * P.v[i].x;
       return q / (L * L * L);
     };
-    real fluid_mass = 0, fluid_volume = 0;
-    for (std::size_t i = P.n_boundary; i < P.size(); ++i) {
-      fluid_mass += P.m[i];
-      fluid_volume += P.m[i] / P.rho[i];
-    }
+    real fluid_volume = 0;
+    for (std::size_t i = P.n_boundary; i < P.size(); ++i) fluid_volume += P.m[i] / P.rho[i];
     const real t_visc = a * a / nu;
     const auto t0 = std::chrono::steady_clock::now();
     real U = 0, U_prev = -1;
@@ -125,7 +127,7 @@ int main(int argc, char** argv) {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const real mu = spec.rho0 * nu;
-    const real K = f * fluid_mass / (6 * M_PI * mu * a * U);  // the drag, f sum_i m_i, over Stokes's
+    const real K = spec.rho0 * f * L * L * L / (6 * M_PI * mu * a * U);  // G L^3 over Stokes's drag
     std::printf(
         "c = %g (a = %.4g L, d0 = L / %d): K = %.4f against Zick & Homsy's %.4g (%+.2f %%); Re %.2g; "
         "fluid volume %.4f of (1 - c) L^3; %zu particles (%zu on the sphere), %lld steps to t = %.3g s "

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
+#include <vector>
 
 namespace particula {
 
@@ -125,21 +127,79 @@ BoxScene3 build_box3(const BoxSpec3& spec) {
           static_cast<std::int32_t>(6 + k), Kind::Boundary, {});
   }
   P.n_boundary = P.x.size();
-  // the fluid lattice, outside the solids by d0 / 2 at least (the solid's own distance, taken to
-  // the nearest periodic image of its position)
-  const auto clear_of_solids = [&](Vec3 x) {
+  // the fluid lattice, outside the solids by d0 / 2 at least (the solids' own distance, taken to
+  // the nearest periodic image of their positions)
+  const auto solid_distance = [&](Vec3 x) {
+    real d = std::numeric_limits<real>::infinity();
     for (const FixedSolid3& solid : spec.solids) {
       const Vec3 r = s.domain.separation(x, solid.position);
-      if (solid.shape.signed_distance(rotate_back(normalized(solid.orientation), r)) < 0.5 * spec.d0)
-        return false;
+      d = std::min(d, solid.shape.signed_distance(rotate_back(normalized(solid.orientation), r)));
     }
-    return true;
+    return d;
+  };
+  // The fluid's masses fill the region outside the solids exactly, as in 2D: a cell cut by a
+  // solid surface holds its part outside (kSubcells^3 midpoints), and the part of a cell whose
+  // particle is left out goes to the nearest kept particle among the 5 x 5 x 5 cells round it.
+  constexpr int kSubcells = 6;
+  const real half_diagonal = 0.5 * std::sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
+  const auto outside_fraction = [&](Vec3 x, real d) {
+    if (d >= half_diagonal) return real(1);
+    if (d <= -half_diagonal) return real(0);
+    int out = 0;
+    for (int a = 0; a < kSubcells; ++a)
+      for (int b = 0; b < kSubcells; ++b)
+        for (int e = 0; e < kSubcells; ++e) {
+          const Vec3 q{x.x + ((a + 0.5) / kSubcells - 0.5) * dx[0],
+                       x.y + ((b + 0.5) / kSubcells - 0.5) * dx[1],
+                       x.z + ((e + 0.5) / kSubcells - 0.5) * dx[2]};
+          out += solid_distance(q) > 0 ? 1 : 0;
+        }
+    return static_cast<real>(out) / (kSubcells * kSubcells * kSubcells);
+  };
+  std::vector<std::int64_t> particle_of(static_cast<std::size_t>(n[0]) * n[1] * n[2], -1);
+  std::vector<real> left_over(particle_of.size(), 0);
+  const auto cell_index = [&](int i, int j, int k) {
+    return (static_cast<std::size_t>(i) * n[1] + j) * n[2] + k;
   };
   for (int i = 0; i < n[0]; ++i)
     for (int j = 0; j < n[1]; ++j)
       for (int k = 0; k < n[2]; ++k) {
         const Vec3 x{centre(0, i), centre(1, j), centre(2, k)};
-        if (clear_of_solids(x)) add(x, cell, {}, 0, -1, Kind::Fluid, {});
+        const real d = spec.solids.empty() ? std::numeric_limits<real>::infinity() : solid_distance(x);
+        const real volume = outside_fraction(x, d) * cell;
+        if (d >= 0.5 * spec.d0) {
+          particle_of[cell_index(i, j, k)] = static_cast<std::int64_t>(P.size());
+          add(x, volume, {}, 0, -1, Kind::Fluid, {});
+        } else {
+          left_over[cell_index(i, j, k)] = volume;
+        }
+      }
+  // a left-out cell's fluid to the nearest kept particle (periodic axes wrap, closed ones end)
+  const auto wrap_index = [&](int a, int i) {
+    if (i >= 0 && i < n[a]) return i;
+    return spec.periodic[a] ? (i + n[a]) % n[a] : -1;
+  };
+  for (int i = 0; i < n[0]; ++i)
+    for (int j = 0; j < n[1]; ++j)
+      for (int k = 0; k < n[2]; ++k) {
+        const real volume = left_over[cell_index(i, j, k)];
+        if (!(volume > 0)) continue;
+        const Vec3 x{centre(0, i), centre(1, j), centre(2, k)};
+        std::int64_t best = -1;
+        real best_d2 = std::numeric_limits<real>::infinity();
+        for (int di = -2; di <= 2; ++di)
+          for (int dj = -2; dj <= 2; ++dj)
+            for (int dk = -2; dk <= 2; ++dk) {
+              const int ii = wrap_index(0, i + di), jj = wrap_index(1, j + dj), kk = wrap_index(2, k + dk);
+              if (ii < 0 || jj < 0 || kk < 0) continue;
+              const std::int64_t q = particle_of[cell_index(ii, jj, kk)];
+              if (q < 0) continue;
+              const real d2 = norm2(s.domain.separation(P.x[static_cast<std::size_t>(q)], x));
+              if (d2 < best_d2) best_d2 = d2, best = q;
+            }
+        if (best < 0)
+          throw std::invalid_argument("build_box3: fluid cut off by solids with no particle to hold it");
+        P.m[static_cast<std::size_t>(best)] += spec.rho0 * volume;
       }
   P.next_id = static_cast<std::int64_t>(P.size());
   return s;

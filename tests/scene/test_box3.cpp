@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <set>
 #include <stdexcept>
 
@@ -115,4 +116,10 @@ TEST(Box3, AFixedSphereIsSampledAndTheFluidKeepsClearOfIt) {
             a + 0.025)
           ++expected;
   EXPECT_EQ(fluid, expected);
+  // the fluid's masses fill the box outside the sphere (to the midpoint rule on the cut cells)
+  real volume = 0;
+  for (std::size_t i = P.n_boundary; i < P.size(); ++i) volume += P.m[i] / P.rho[i];
+  const real exact = 1 - 4 * M_PI * a * a * a / 3;
+  EXPECT_NEAR(volume / exact, 1, 1e-3);
+  std::printf("fluid volume outside the sphere: %.6f of the exact\n", volume / exact);
 }

@@ -36,7 +36,9 @@ struct BoxSpec3 {
   /// Solids fixed in the fluid: their surfaces sampled at about d0 (each sample a wall particle
   /// with the exact area it stands for and the shape's normal, volume d0 dA as a face's), and the
   /// fluid lattice left out where it lies within d0 / 2 of a solid or inside one (periodic images
-  /// included).
+  /// included). The fluid's masses fill the region outside the solids exactly (to the 6^3
+  /// midpoints of a cut cell): a cut cell's particle holds its part outside, and a left-out
+  /// cell's part goes to the nearest kept particle.
   std::vector<FixedSolid3> solids;
 };
 
