@@ -165,3 +165,45 @@ TEST(FluidSolver, StartUpCouetteBetweenPlatesIn3D) {
     EXPECT_LT(across, 1e-6 * V0) << "t = " << t_check;
   }
 }
+
+TEST(FluidSolver, FluidRoundAFixedSphereStaysAtRestUnderGravityIn3D) {
+  // A fixed sphere (radius 3 d0, its surface by P.20 from the momentum equation) in the middle of
+  // a closed box of fluid under gravity kept in the fluid: the fluid stays at rest and
+  // hydrostatic round it. (With the sphere 1.8 d0 above the floor, the film between them moved
+  // at 5e-3 sqrt(g H) after 120 steps.)
+  const real L = 0.01, d0 = L / 12, g = 9.81, c = 5;
+  BoxSpec3 spec;
+  spec.lo = {0, 0, 0};
+  spec.hi = {L, L, L};
+  spec.d0 = d0;
+  spec.rho0 = 1000;
+  spec.solids.push_back(FixedSolid3{Shape3::sphere(3 * d0), {0.5 * L, 0.45 * L, 0.5 * L}, Quat{}});
+  BoxScene3 sc = build_box3(spec);
+  for (std::size_t i = 0; i < sc.particles.size(); ++i) {
+    sc.particles.p[i] = spec.rho0 * g * (L - sc.particles.x[i].z);
+    sc.particles.rho[i] = spec.rho0 + sc.particles.p[i] / (c * c);
+    sc.particles.m[i] *= sc.particles.rho[i] / spec.rho0;
+  }
+  FluidParamsOf<3> prm = fluid3(d0, spec.rho0, 1e-6, c);
+  prm.gravity = {0, 0, -g};
+  prm.gravity_in_fluid = true;
+  FluidSolverOf<3> solver(prm, sc.domain, sc.particles);
+  while (solver.time() < 0.0025) ASSERT_FALSE(solver.step().has_value()) << "t = " << solver.time();
+  const Particles3& P = solver.particles();
+  real vmax = 0, perr = 0;
+  for (std::size_t i = P.n_boundary; i < P.size(); ++i) {
+    vmax = std::fmax(vmax, norm(P.v[i]));
+    perr = std::fmax(perr, std::fabs(P.p[i] - spec.rho0 * g * (L - P.x[i].z)));
+  }
+  real sphere_err = 0;  // P.20 on the sphere's surface: the hydrostatic pressure there
+  for (std::size_t i = 0; i < P.n_boundary; ++i)
+    if (P.group[i] == 6) sphere_err = std::fmax(sphere_err, std::fabs(P.p[i] - spec.rho0 * g * (L - P.x[i].z)));
+  const real p_bottom = spec.rho0 * g * L;
+  std::printf("3D box with a sphere: %lld steps, max |V| %.3g of sqrt(g H), max |P - P_h| %.3g (fluid) and %.3g "
+              "(sphere) of rho0 g H\n",
+              static_cast<long long>(solver.step_count()), vmax / std::sqrt(g * L), perr / p_bottom,
+              sphere_err / p_bottom);
+  EXPECT_LT(vmax, 1e-3 * std::sqrt(g * L));
+  EXPECT_LT(perr, 1e-2 * p_bottom);
+  EXPECT_LT(sphere_err, 1e-2 * p_bottom);
+}
