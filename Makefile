@@ -69,11 +69,11 @@ bench-bodies: build
 # 3D with the fluid solver (no case file yet): start-up flow in a square duct at 10, 20 and 40
 # particles across against the series solution, with the 2D channel's cost per pair alongside
 # (--plates), then Stokes flow through a simple cubic array of spheres against Zick & Homsy at
-# 8 and 12 particles across a sphere. About 15 minutes on 2 cores. BENCH3_ARGS adds options,
+# 8, 12 and 16 particles across a sphere. About 25 minutes on 2 cores. BENCH3_ARGS adds options,
 # e.g. --threads 1.
 bench-3d: build
 	./build/release/bench/particula_bench_duct3 --across 10 --across 20 --across 40 --plates $(BENCH3_ARGS)
-	./build/release/bench/particula_bench_sphere_array3 --c 0.064 --across 8 --across 12 $(BENCH3_ARGS)
+	./build/release/bench/particula_bench_sphere_array3 --c 0.064 --across 8 --across 12 --across 16 $(BENCH3_ARGS)
 
 clean:
 	rm -rf build
