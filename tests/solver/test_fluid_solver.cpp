@@ -52,6 +52,48 @@ FluidParamsOf<3> fluid3(real d0, real rho0, real nu, real c_sound) {
   return fluid_scalars<3>(physics_params(c));
 }
 
+/// The measures of a 3D box of fluid at rest after a run (run_at_rest).
+struct AtRest {
+  std::int64_t steps = 0;
+  real vmax = 0;         // the fastest fluid particle, m/s
+  real fluid_err = 0;    // the largest |P - rho0 g (H - z)| of a fluid particle, Pa
+  real surface_err = 0;  // the same at the surface particles of the group asked for, Pa
+};
+
+/// The box of `spec` under gravity g along -z kept in the fluid, started in the hydrostatic state
+/// (P = rho0 g (H - z), rho from the equation of state at sound speed c) and run to t_end.
+AtRest run_at_rest(const BoxSpec3& spec, real g, real c, real t_end, std::int32_t surface_group = -1) {
+  BoxScene3 sc = build_box3(spec);
+  const real H = spec.hi.z;
+  const auto hydrostatic = [&](Vec3 x) { return spec.rho0 * g * (H - x.z); };
+  for (std::size_t i = 0; i < sc.particles.size(); ++i) {
+    sc.particles.p[i] = hydrostatic(sc.particles.x[i]);
+    sc.particles.rho[i] = spec.rho0 + sc.particles.p[i] / (c * c);
+    sc.particles.m[i] *= sc.particles.rho[i] / spec.rho0;
+  }
+  FluidParamsOf<3> prm = fluid3(spec.d0, spec.rho0, 1e-6, c);
+  prm.gravity = {0, 0, -g};
+  prm.gravity_in_fluid = true;
+  FluidSolverOf<3> solver(prm, sc.domain, sc.particles);
+  while (solver.time() < t_end)
+    if (auto f = solver.step()) {
+      ADD_FAILURE() << "t = " << solver.time() << ": " << f->what;
+      break;
+    }
+  const Particles3& P = solver.particles();
+  AtRest r;
+  r.steps = solver.step_count();
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    const real e = std::fabs(P.p[i] - hydrostatic(P.x[i]));
+    if (i >= P.n_boundary) {
+      r.vmax = std::fmax(r.vmax, norm(P.v[i]));
+      r.fluid_err = std::fmax(r.fluid_err, e);
+    } else if (P.group[i] == surface_group) {
+      r.surface_err = std::fmax(r.surface_err, e);
+    }
+  }
+  return r;
+}
 }  // namespace
 
 TEST(FluidSolver, TwoDimensionalWallFlowsAreBitwiseSolvers) {
@@ -63,38 +105,20 @@ TEST(FluidSolver, TwoDimensionalWallFlowsAreBitwiseSolvers) {
 }
 
 TEST(FluidSolver, ClosedBoxUnderGravityStaysAtRestIn3D) {
-  const real L = 0.01, d0 = L / 10, g = 9.81, c = 5;
+  const real L = 0.01, g = 9.81;
   BoxSpec3 spec;
   spec.lo = {0, 0, 0};
   spec.hi = {L, 0.8 * L, 1.2 * L};
-  spec.d0 = d0;
+  spec.d0 = L / 10;
   spec.rho0 = 1000;
-  BoxScene3 sc = build_box3(spec);
-  // the hydrostatic state: P = rho0 g (H - z) at the particles, rho from the equation of state
-  const real H = spec.hi.z;
-  for (std::size_t i = 0; i < sc.particles.size(); ++i) {
-    sc.particles.p[i] = spec.rho0 * g * (H - sc.particles.x[i].z);
-    sc.particles.rho[i] = spec.rho0 + sc.particles.p[i] / (c * c);
-    sc.particles.m[i] *= sc.particles.rho[i] / spec.rho0;
-  }
-  FluidParamsOf<3> prm = fluid3(d0, spec.rho0, 1e-6, c);
-  prm.gravity = {0, 0, -g};
-  prm.gravity_in_fluid = true;
-  FluidSolverOf<3> solver(prm, sc.domain, sc.particles);
-  while (solver.time() < 0.005) ASSERT_FALSE(solver.step().has_value()) << "t = " << solver.time();
-  const Particles3& P = solver.particles();
-  real vmax = 0, perr = 0;
-  for (std::size_t i = P.n_boundary; i < P.size(); ++i) {
-    vmax = std::fmax(vmax, norm(P.v[i]));
-    perr = std::fmax(perr, std::fabs(P.p[i] - spec.rho0 * g * (H - P.x[i].z)));
-  }
-  const real p_bottom = spec.rho0 * g * H;
+  const AtRest r = run_at_rest(spec, g, 5, 0.005);
+  const real H = spec.hi.z, p_bottom = spec.rho0 * g * H;
   std::printf(
       "3D hydrostatic box: %lld steps, max |V| %.3g m/s (%.3g of sqrt(g H)), max |P - P_h| %.3g of rho0 g "
       "H\n",
-      static_cast<long long>(solver.step_count()), vmax, vmax / std::sqrt(g * H), perr / p_bottom);
-  EXPECT_LT(vmax, 1e-3 * std::sqrt(g * H));
-  EXPECT_LT(perr, 2e-2 * p_bottom);
+      static_cast<long long>(r.steps), r.vmax, r.vmax / std::sqrt(g * H), r.fluid_err / p_bottom);
+  EXPECT_LT(r.vmax, 1e-3 * std::sqrt(g * H));
+  EXPECT_LT(r.fluid_err, 2e-2 * p_bottom);
 }
 
 TEST(FluidSolver, SquareDuctStartUpFollowsTheSeriesSolutionIn3D) {
@@ -171,39 +195,21 @@ TEST(FluidSolver, FluidRoundAFixedSphereStaysAtRestUnderGravityIn3D) {
   // a closed box of fluid under gravity kept in the fluid: the fluid stays at rest and
   // hydrostatic round it. (With the sphere 1.8 d0 above the floor, the film between them moved
   // at 5e-3 sqrt(g H) after 120 steps.)
-  const real L = 0.01, d0 = L / 12, g = 9.81, c = 5;
+  const real L = 0.01, d0 = L / 12, g = 9.81;
   BoxSpec3 spec;
   spec.lo = {0, 0, 0};
   spec.hi = {L, L, L};
   spec.d0 = d0;
   spec.rho0 = 1000;
   spec.solids.push_back(FixedSolid3{Shape3::sphere(3 * d0), {0.5 * L, 0.45 * L, 0.5 * L}, Quat{}});
-  BoxScene3 sc = build_box3(spec);
-  for (std::size_t i = 0; i < sc.particles.size(); ++i) {
-    sc.particles.p[i] = spec.rho0 * g * (L - sc.particles.x[i].z);
-    sc.particles.rho[i] = spec.rho0 + sc.particles.p[i] / (c * c);
-    sc.particles.m[i] *= sc.particles.rho[i] / spec.rho0;
-  }
-  FluidParamsOf<3> prm = fluid3(d0, spec.rho0, 1e-6, c);
-  prm.gravity = {0, 0, -g};
-  prm.gravity_in_fluid = true;
-  FluidSolverOf<3> solver(prm, sc.domain, sc.particles);
-  while (solver.time() < 0.0025) ASSERT_FALSE(solver.step().has_value()) << "t = " << solver.time();
-  const Particles3& P = solver.particles();
-  real vmax = 0, perr = 0;
-  for (std::size_t i = P.n_boundary; i < P.size(); ++i) {
-    vmax = std::fmax(vmax, norm(P.v[i]));
-    perr = std::fmax(perr, std::fabs(P.p[i] - spec.rho0 * g * (L - P.x[i].z)));
-  }
-  real sphere_err = 0;  // P.20 on the sphere's surface: the hydrostatic pressure there
-  for (std::size_t i = 0; i < P.n_boundary; ++i)
-    if (P.group[i] == 6) sphere_err = std::fmax(sphere_err, std::fabs(P.p[i] - spec.rho0 * g * (L - P.x[i].z)));
+  const AtRest r = run_at_rest(spec, g, 5, 0.0025, 6);  // group 6: the first solid's surface
   const real p_bottom = spec.rho0 * g * L;
-  std::printf("3D box with a sphere: %lld steps, max |V| %.3g of sqrt(g H), max |P - P_h| %.3g (fluid) and %.3g "
-              "(sphere) of rho0 g H\n",
-              static_cast<long long>(solver.step_count()), vmax / std::sqrt(g * L), perr / p_bottom,
-              sphere_err / p_bottom);
-  EXPECT_LT(vmax, 1e-3 * std::sqrt(g * L));
-  EXPECT_LT(perr, 1e-2 * p_bottom);
-  EXPECT_LT(sphere_err, 1e-2 * p_bottom);
+  std::printf(
+      "3D box with a sphere: %lld steps, max |V| %.3g of sqrt(g H), max |P - P_h| %.3g (fluid) and %.3g "
+      "(sphere) of rho0 g H\n",
+      static_cast<long long>(r.steps), r.vmax / std::sqrt(g * L), r.fluid_err / p_bottom,
+      r.surface_err / p_bottom);
+  EXPECT_LT(r.vmax, 1e-3 * std::sqrt(g * L));
+  EXPECT_LT(r.fluid_err, 1e-2 * p_bottom);
+  EXPECT_LT(r.surface_err, 1e-2 * p_bottom);
 }
